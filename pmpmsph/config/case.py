@@ -1,0 +1,138 @@
+"""The validated, frozen description of a scene (DESIGN.md section 1, `config/`).
+
+`Case` is what the rest of the code consumes; `load.py` builds it from TOML text or from the
+Python `Scene` API. Nothing here knows about MPI or numba.
+"""
+from dataclasses import dataclass, field
+from typing import Optional
+
+SHAPES = ("linear", "gimp", "quadratic", "cubic")
+TRANSFERS = ("usl", "usf", "musl")
+CONTACTS = ("single", "multi")
+METHODS = ("mpm", "sph")
+BC_KINDS = ("fixed", "slip", "friction")
+
+
+@dataclass(frozen=True)
+class GridSpec:
+    origin: tuple
+    cell_size: tuple
+    cells: tuple
+
+    @property
+    def dim(self):
+        return len(self.cells)
+
+    @property
+    def upper(self):
+        return tuple(o + h * n for o, h, n in zip(self.origin, self.cell_size, self.cells))
+
+
+@dataclass(frozen=True)
+class MPMSpec:
+    shape: str = "linear"
+    transfer: str = "usl"
+    flip: float = 1.0          # 1 = FLIP (thesis eq. 80), 0 = PIC
+    damping: float = 0.0       # alpha_d of thesis eq. 76
+    mass_cutoff: float = 1e-10  # nodes lighter than this get no velocity (thesis listing 2)
+    contact: str = "single"    # single velocity field, or one per body (Bardenhagen)
+    friction: float = 0.0      # Coulomb coefficient of multi-field contact
+
+
+@dataclass(frozen=True)
+class BodySpec:
+    name: str
+    method: str
+    material: str
+    geometry: object
+    ppc: Optional[int] = None
+    spacing: Optional[tuple] = None
+    count: Optional[tuple] = None
+    velocity: tuple = ()
+    stress: tuple = ()          # initial (pre-)stress, Voigt order for the dimension
+
+
+@dataclass(frozen=True)
+class Region:
+    """Either a domain face ("x-", "y+", ...) or an axis-aligned box."""
+    face: Optional[str] = None
+    lo: Optional[tuple] = None
+    hi: Optional[tuple] = None
+
+
+@dataclass(frozen=True)
+class BoundarySpec:
+    region: Region
+    kind: str                   # fixed | slip | friction
+    normal: tuple = ()          # outward normal for slip/friction on a box region
+    friction: float = 0.0
+    until: float = float("inf")  # gates: removed at this time
+    key: str = ""
+
+
+@dataclass(frozen=True)
+class LoadSpec:
+    """Traction on the particles of `body` inside `region`, ramped linearly over `ramp`."""
+    body: str
+    region: Region
+    traction: tuple
+    normal: str = "x+"          # the loaded face's outward normal, for the area per particle
+    ramp: float = 0.0
+    key: str = ""
+
+
+@dataclass(frozen=True)
+class PrescribedSpec:
+    """Prescribed velocity components (None = free) of particles in `region` of `body`."""
+    body: str
+    region: Region
+    velocity: tuple
+    start: float = 0.0
+    until: float = float("inf")
+    key: str = ""
+
+
+@dataclass(frozen=True)
+class TimeSpec:
+    end: float
+    dt: Optional[float] = None
+    cfl: Optional[float] = None
+
+
+@dataclass(frozen=True)
+class OutputSpec:
+    every: Optional[float] = None       # snapshot interval in time
+    every_steps: Optional[int] = None   # or in steps
+    diagnostics_every: int = 1          # steps between diagnostics rows
+    fields: tuple = ("gid", "body", "x", "v", "mass", "vol", "rho", "sigma", "F")
+    folder: str = "output"
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    dim: int
+    grid: Optional[GridSpec]
+    mpm: MPMSpec
+    materials: dict
+    bodies: tuple
+    boundaries: tuple = ()
+    loads: tuple = ()
+    prescribed: tuple = ()
+    gravity: tuple = ()
+    time: TimeSpec = None
+    output: OutputSpec = field(default_factory=OutputSpec)
+    text: str = ""
+
+    @property
+    def has_mpm(self):
+        return any(b.method == "mpm" for b in self.bodies)
+
+    def material_names(self):
+        return list(self.materials)
+
+    def body_index(self, name):
+        for i, b in enumerate(self.bodies):
+            if b.name == name:
+                return i
+        raise KeyError(name)

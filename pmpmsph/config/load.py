@@ -1,0 +1,299 @@
+"""TOML text (or a plain dict from the Python `Scene` API) -> validated, frozen `Case`.
+
+Every error is a `ConfigError` naming the dotted TOML key; the CLI turns it into one line
+and exit status 2 on every rank.
+"""
+import copy
+import math
+import tomllib
+
+from ..errors import ConfigError
+from ..materials import material_from_table
+from ..scene.geometry import Box, Disc, Polygon
+from .case import (BC_KINDS, CONTACTS, METHODS, SHAPES, TRANSFERS, BodySpec, BoundarySpec,
+                   Case, GridSpec, LoadSpec, MPMSpec, OutputSpec, PrescribedSpec, Region,
+                   TimeSpec)
+from .table import Table
+
+FACES = ("x-", "x+", "y-", "y+", "z-", "z+")
+
+
+def parse_set(assignments):
+    """`--set a.b=1.5` strings -> list of (dotted key, TOML value)."""
+    out = []
+    for item in assignments or ():
+        if "=" not in item:
+            raise ConfigError(item, "--set expects key=value")
+        key, val = item.split("=", 1)
+        try:
+            parsed = tomllib.loads(f"v = {val}")["v"]
+        except tomllib.TOMLDecodeError:
+            parsed = val  # a bare word is a string
+        out.append((key.strip(), parsed))
+    return out
+
+
+def apply_overrides(data, overrides):
+    for key, val in overrides:
+        node = data
+        parts = key.split(".")
+        for part in parts[:-1]:
+            if "[" in part:
+                name, idx = part[:-1].split("[")
+                node = node[name][int(idx)]
+            else:
+                node = node.setdefault(part, {})
+        node[parts[-1]] = val
+    return data
+
+
+def load_case_text(text, name="case", overrides=()):
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError("<toml>", f"not valid TOML: {exc}") from None
+    data = apply_overrides(data, overrides)
+    return case_from_dict(data, name=name, text=text)
+
+
+def load_case_file(path, overrides=()):
+    import os
+
+    try:
+        with open(path, encoding="utf-8") as fh:
+            text = fh.read()
+    except OSError as exc:
+        raise ConfigError("<file>", f"cannot read {path}: {exc.strerror}") from None
+    name = os.path.splitext(os.path.basename(path))[0]
+    return load_case_text(text, name=name, overrides=overrides)
+
+
+# -- pieces -----------------------------------------------------------------------------------
+def _grid(t, dim):
+    origin = t.vector("origin", dim, (0.0,) * dim)
+    cells = t.vector("cells", dim, integer=True, positive=True, scalar_ok=True)
+    if t.has("cell_size"):
+        h = t.vector("cell_size", dim, positive=True, scalar_ok=True)
+        if t.has("length"):
+            raise ConfigError(t.key("length"), "give either cell_size or length, not both")
+    else:
+        length = t.vector("length", dim, positive=True, scalar_ok=True)
+        h = tuple(length[a] / cells[a] for a in range(dim))
+    if math.prod(cells) > 2e8:
+        raise ConfigError(t.key("cells"), f"{math.prod(cells)} cells is more than this solver "
+                          "allocates (2e8)")
+    t.finish()
+    return GridSpec(origin, h, cells)
+
+
+def _region(t, dim, required=True):
+    if t.has("face"):
+        face = t.string("face", choices=FACES[: 2 * dim])
+        return Region(face=face)
+    if t.has("box") or required:
+        box = t.sub("box")
+        lo = box.vector("min", dim)
+        hi = box.vector("max", dim)
+        for a in range(dim):
+            if hi[a] < lo[a]:
+                raise ConfigError(box.key("max") + f"[{a}]", "max is below min")
+        box.finish()
+        return Region(lo=lo, hi=hi)
+    return None
+
+
+def _geometry(t, dim):
+    shape = t.string("shape", choices=("box", "disc", "circle", "sphere", "polygon"))
+    if shape == "box":
+        lo = t.vector("min", dim)
+        hi = t.vector("max", dim)
+        for a in range(dim):
+            if hi[a] <= lo[a]:
+                raise ConfigError(t.key("max") + f"[{a}]", "max must exceed min")
+        return Box(lo, hi)
+    if shape in ("disc", "circle", "sphere"):
+        return Disc(t.vector("centre", dim), t.number("radius", min_open=0.0))
+    if dim != 2:
+        raise ConfigError(t.key("shape"), "polygons are 2D only")
+    verts = t.raw("vertices")
+    if not isinstance(verts, list) or len(verts) < 3:
+        raise ConfigError(t.key("vertices"), "expected a list of at least 3 [x, y] points")
+    pts = []
+    for i, v in enumerate(verts):
+        if (not isinstance(v, list) or len(v) != 2
+                or not all(isinstance(c, (int, float)) and not isinstance(c, bool)
+                           and math.isfinite(c) for c in v)):
+            raise ConfigError(f"{t.key('vertices')}[{i}]", "expected [x, y] with finite numbers")
+        pts.append(tuple(float(c) for c in v))
+    poly = Polygon(tuple(pts))
+    if poly.measure() <= 0:
+        raise ConfigError(t.key("vertices"), "polygon has zero area")
+    return poly
+
+
+def _voigt_len(dim):
+    return {1: 1, 2: 3, 3: 6}[dim]
+
+
+def _body(t, dim, materials, grid):
+    name = t.string("name", t.path.replace("bodies", "body"))
+    method = t.string("method", "mpm", choices=METHODS)
+    mat = t.string("material")
+    if mat not in materials:
+        raise ConfigError(t.key("material"), f"unknown material {mat!r}; defined: "
+                          f"{', '.join(materials) or 'none'}")
+    geom = _geometry(t, dim)
+    given = [k for k in ("ppc", "spacing", "count") if t.has(k)]
+    if len(given) != 1:
+        raise ConfigError(t.key("ppc"), "give exactly one of ppc, spacing or count")
+    ppc = spacing = count = None
+    if given[0] == "ppc":
+        ppc = t.number("ppc", integer=True, min=1, max=16)
+        if grid is None:
+            raise ConfigError(t.key("ppc"), "ppc needs a [grid]")
+    elif given[0] == "spacing":
+        spacing = t.vector("spacing", dim, positive=True, scalar_ok=True)
+    else:
+        if not isinstance(geom, Box):
+            raise ConfigError(t.key("count"), "count is for box bodies; use ppc or spacing")
+        count = t.vector("count", dim, integer=True, positive=True, scalar_ok=True)
+    velocity = t.vector("velocity", dim, (0.0,) * dim)
+    stress = t.vector("stress", _voigt_len(dim), ())
+    t.finish()
+    return BodySpec(name, method, mat, geom, ppc, spacing, count, velocity, stress)
+
+
+def _face_normal(face, dim):
+    n = [0.0] * dim
+    n["xyz".index(face[0])] = 1.0 if face[1] == "+" else -1.0
+    return tuple(n)
+
+
+def _boundary(t, dim):
+    region = _region(t, dim)
+    kind = t.string("type", choices=BC_KINDS)
+    if region.face:
+        normal = _face_normal(region.face, dim)
+        if t.has("normal"):
+            raise ConfigError(t.key("normal"), "a face has its own normal; remove 'normal'")
+    elif kind == "fixed":
+        normal = (0.0,) * dim
+    else:
+        normal = t.vector("normal", dim)
+        norm = math.sqrt(sum(c * c for c in normal))
+        if norm == 0:
+            raise ConfigError(t.key("normal"), "normal must not be zero")
+        normal = tuple(c / norm for c in normal)
+    mu = t.number("friction", 0.0, min=0.0) if kind == "friction" else 0.0
+    until = t.number("until", math.inf, min=0.0) if t.has("until") else math.inf
+    t.finish()
+    return BoundarySpec(region, kind, normal, mu, until, t.path)
+
+
+def _load(t, dim, body_names):
+    body = t.string("body")
+    if body not in body_names:
+        raise ConfigError(t.key("body"), f"unknown body {body!r}")
+    region = _region(t, dim)
+    traction = t.vector("traction", dim)
+    normal = t.string("normal", choices=FACES[: 2 * dim])
+    ramp = t.number("ramp", 0.0, min=0.0)
+    t.finish()
+    return LoadSpec(body, region, traction, normal, ramp, t.path)
+
+
+def _prescribed(t, dim, body_names):
+    body = t.string("body")
+    if body not in body_names:
+        raise ConfigError(t.key("body"), f"unknown body {body!r}")
+    region = _region(t, dim, required=False) or Region(lo=(-math.inf,) * dim,
+                                                       hi=(math.inf,) * dim)
+    raw = t.raw("velocity")
+    if not isinstance(raw, list) or len(raw) != dim:
+        raise ConfigError(t.key("velocity"), f"expected {dim} entries (numbers, or \"free\")")
+    vel = []
+    for i, c in enumerate(raw):
+        if c == "free":
+            vel.append(None)
+        elif isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c):
+            vel.append(float(c))
+        else:
+            raise ConfigError(f"{t.key('velocity')}[{i}]", "expected a number or \"free\"")
+    start = t.number("start", 0.0, min=0.0)
+    until = t.number("until", math.inf, min=0.0) if t.has("until") else math.inf
+    t.finish()
+    return PrescribedSpec(body, region, tuple(vel), start, until, t.path)
+
+
+def case_from_dict(data, name="case", text=""):
+    data = copy.deepcopy(data)
+    root = Table(data, "")
+    dim = root.number("dimension", integer=True, min=1, max=3)
+    name = root.string("name", name)
+    grid_t = root.sub("grid", None)
+    grid = _grid(grid_t, dim) if grid_t is not None else None
+
+    mpm_t = root.sub("mpm", {})
+    mpm = MPMSpec(
+        shape=mpm_t.string("shape", "linear", choices=SHAPES),
+        transfer=mpm_t.string("transfer", "usl", choices=TRANSFERS),
+        flip=mpm_t.number("flip", 1.0, min=0.0, max=1.0),
+        damping=mpm_t.number("damping", 0.0, min=0.0),
+        mass_cutoff=mpm_t.number("mass_cutoff", 1e-10, min=0.0),
+        contact=mpm_t.string("contact", "single", choices=CONTACTS),
+        friction=mpm_t.number("friction", 0.0, min=0.0),
+    )
+    mpm_t.finish()
+
+    mats_t = root.sub("materials")
+    materials = {}
+    for mname in mats_t.data:
+        materials[mname] = material_from_table(mats_t.raw(mname), mats_t.key(mname), dim)
+    if not materials:
+        raise ConfigError("materials", "define at least one material")
+
+    bodies = tuple(_body(bt, dim, materials, grid) for bt in root.subs("bodies"))
+    if not bodies:
+        raise ConfigError("bodies", "define at least one [[bodies]] entry")
+    names = [b.name for b in bodies]
+    for i, n in enumerate(names):
+        if names.index(n) != i:
+            raise ConfigError(f"bodies[{i}].name", f"duplicate body name {n!r}")
+    if any(b.method == "mpm" for b in bodies) and grid is None:
+        raise ConfigError("grid", "MPM bodies need a [grid] section")
+    if any(b.method == "sph" for b in bodies):
+        raise ConfigError("bodies[].method", "SPH bodies are not available yet in this build")
+    if mpm.shape == "gimp" and any(b.ppc == 1 for b in bodies):
+        pass  # lp = 1/2 is the largest GIMP support this stencil covers; ppc >= 1 is fine
+
+    boundaries = tuple(_boundary(bt, dim) for bt in root.subs("boundaries"))
+    loads = tuple(_load(lt, dim, names) for lt in root.subs("loads"))
+    if len({ld.ramp for ld in loads}) > 1:
+        raise ConfigError("loads[1].ramp", "all loads share one ramp time in this version")
+    prescribed = tuple(_prescribed(pt, dim, names) for pt in root.subs("prescribed"))
+    gravity = root.vector("gravity", dim, (0.0,) * dim)
+
+    tt = root.sub("time")
+    end = tt.number("end", min_open=0.0)
+    dt = tt.number("dt", None, min_open=0.0)
+    cfl = tt.number("cfl", None, min_open=0.0, max=1.0)
+    if (dt is None) == (cfl is None):
+        raise ConfigError(tt.key("dt"), "give exactly one of time.dt or time.cfl")
+    tt.finish()
+
+    ot = root.sub("output", {})
+    every = ot.number("every", None, min_open=0.0)
+    every_steps = ot.number("every_steps", None, integer=True, min=1)
+    if every is not None and every_steps is not None:
+        raise ConfigError(ot.key("every_steps"), "give output.every or output.every_steps")
+    fields = ot.raw("fields", list(OutputSpec().fields))
+    if not isinstance(fields, list) or not all(isinstance(f, str) for f in fields):
+        raise ConfigError(ot.key("fields"), "expected a list of field names")
+    output = OutputSpec(every=every, every_steps=every_steps,
+                        diagnostics_every=ot.number("diagnostics_every", 1, integer=True, min=1),
+                        fields=tuple(fields), folder=ot.string("folder", "output"))
+    ot.finish()
+    root.finish()
+    return Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
+                boundaries=boundaries, loads=loads, prescribed=prescribed, gravity=gravity,
+                time=TimeSpec(end, dt, cfl), output=output, text=text)

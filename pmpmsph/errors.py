@@ -1,0 +1,34 @@
+"""The two kinds of failure a user sees (DESIGN.md section 7).
+
+`ConfigError` stops a run before step 1 (exit status 2) and names the TOML key;
+`RunError` stops a running simulation (exit status 3) and names step, particle and cause.
+"""
+
+EXIT_CONFIG = 2
+EXIT_RUNTIME = 3
+
+
+class ConfigError(Exception):
+    """Bad input: `key` is the dotted TOML path (e.g. ``bodies[0].material``)."""
+
+    def __init__(self, key, reason):
+        self.key = key
+        self.reason = reason
+        super().__init__(f"{key}: {reason}")
+
+    def __str__(self):
+        return f"invalid input at '{self.key}': {self.reason}"
+
+
+class RunError(Exception):
+    """A failure during the time loop: step number, particle gid (or -1) and the cause."""
+
+    def __init__(self, step, gid, cause):
+        self.step = step
+        self.gid = gid
+        self.cause = cause
+        super().__init__(str(self))
+
+    def __str__(self):
+        who = f"particle gid {self.gid}" if self.gid >= 0 else "no single particle"
+        return f"run failed at step {self.step} ({who}): {self.cause}"

@@ -1,0 +1,435 @@
+"""Particle snapshots in one HDF5 file per run (DESIGN.md section 6).
+
+Layout of ``RUN.h5`` (the same whichever way it was written)::
+
+    /                          attrs: format, layout, case (TOML text), code_version,
+                                      n_ranks, plus the caller's extra attrs
+    /snapshots/000000          attrs: index, time, step, counts (owned particles per rank),
+                                      n_total
+    /snapshots/000000/<field>  dataset of global shape (n_total, ...), rank r's slice at
+                                      offset sum(counts[:r]); fields in the order written
+    /xdmf/polyvertex/<N>       0, 1, ..., N-1 (int32, int64 from 2**31 particles): the
+                                      Polyvertex connectivity the XDMF sidecar points to,
+                                      written once per distinct particle count N and shared
+                                      by every snapshot with that count
+
+Tensors such as ``sigma`` and ``F`` keep their natural shape (n_total, 3, 3), row-major, so
+``F[i]`` reads back as the 3x3 matrix of particle i (the XDMF sidecar declares them as
+``Tensor`` with dimensions ``N 3 3``, which ParaView/VTK read as 9-component arrays).
+Boolean fields are stored as uint8.
+
+Three ways of writing, chosen automatically (``mode="auto"``):
+
+- ``"serial"``   one rank: a plain HDF5 file.
+- ``"mpio"``     several ranks and h5py built with MPI: the file is opened by every rank with
+                 ``driver="mpio"``; groups and datasets are created collectively and every rank
+                 writes its slice with one collective H5Dwrite, an empty selection on ranks
+                 that own no particles.
+- ``"per-rank"`` several ranks, serial h5py: rank r writes its slice to ``RUN.r{r}.h5``
+                 (same group/dataset names, local shape (n_r, ...)); rank 0 writes ``RUN.h5``
+                 whose datasets are HDF5 virtual datasets joining the per-rank files (found
+                 next to ``RUN.h5``; move them together).
+
+The file is opened for each snapshot and closed again, so between writes it is complete on
+disk: a reader (ParaView, ``read_snapshot``) can open it while the run goes on or after a
+crash. HDF5 file locking is switched off for the same reason (a viewer holding the file
+must not stop the run). After each snapshot rank 0 rewrites the XDMF sidecar ``RUN.xdmf``.
+"""
+import glob
+import logging
+import os
+import re
+from collections import namedtuple
+
+import h5py
+import numpy as np
+
+log = logging.getLogger("pmpmsph")
+
+FORMAT = "pmpmsph-snapshots-1"
+GROUP = "snapshots"
+TOPOLOGY = "xdmf/polyvertex"
+MODES = ("auto", "serial", "mpio", "per-rank")
+# Dense attribute storage (the 1.8 file format) so large attributes (a long case text, the
+# counts of many ranks) do not hit the 64 KiB object-header limit.
+LIBVER = ("v108", "latest")
+
+SnapshotInfo = namedtuple("SnapshotInfo", "index name step time n_total")
+
+
+def code_version():
+    """Installed pmpmsph version (or 'unknown' when running from an uninstalled tree)."""
+    try:
+        from importlib.metadata import version
+
+        return version("pmpmsph")
+    except Exception:  # noqa: BLE001 - any failure just means "not installed"
+        import pmpmsph
+
+        return getattr(pmpmsph, "__version__", "unknown")
+
+
+def snapshot_name(index):
+    return f"{int(index):06d}"
+
+
+def rank_file(path, rank):
+    """Per-rank file of ``path`` (``RUN.h5`` -> ``RUN.r3.h5``), in the same directory."""
+    path = os.fspath(path)
+    stem, _ = os.path.splitext(os.path.basename(path))
+    return os.path.join(os.path.dirname(path), f"{stem}.r{rank}.h5")
+
+
+def _rank_files_present(path):
+    path = os.fspath(path)
+    stem, _ = os.path.splitext(os.path.basename(path))
+    pattern = re.compile(re.escape(stem) + r"\.r\d+\.h5$")
+    folder = os.path.dirname(path) or "."
+    return [p for p in glob.glob(os.path.join(glob.escape(folder), f"{glob.escape(stem)}.r*.h5"))
+            if pattern.search(os.path.basename(p))]
+
+
+def xdmf_path_for(path):
+    return os.path.splitext(os.fspath(path))[0] + ".xdmf"
+
+
+def open_h5(path, mode, **kw):
+    """h5py.File without HDF5 file locking (readers and the writer must not block each other)."""
+    try:
+        return h5py.File(path, mode, locking=False, **kw)
+    except (TypeError, ValueError):  # h5py/HDF5 too old for the locking switch
+        return h5py.File(path, mode, **kw)
+
+
+def _storage_array(name, arr):
+    """The array as it is stored: numpy, bool -> uint8, object/str dtypes refused."""
+    arr = np.asarray(arr)
+    if arr.ndim == 0:
+        raise ValueError(f"snapshot field '{name}' must have a particle axis, got a scalar")
+    if arr.dtype == np.bool_:
+        arr = arr.astype(np.uint8)
+    if arr.dtype.kind not in "iuf":
+        raise ValueError(f"snapshot field '{name}' has unsupported dtype {arr.dtype}")
+    return arr
+
+
+class SnapshotWriter:
+    """Writes particle snapshots of a run into one HDF5 file; every method is collective.
+
+    ``fields`` given to :meth:`write` map a name to an array whose first axis is this rank's
+    owned particle count; all ranks must pass the same names, dtypes and trailing shapes in
+    the same order (checked). ``x`` (n, 3) is required when the XDMF sidecar is written.
+    """
+
+    def __init__(self, dist, path, *, case_text="", attrs=None, overwrite=False, mode="auto",
+                 xdmf=True):
+        if mode not in MODES:
+            raise ValueError(f"unknown snapshot mode {mode!r}, expected one of {MODES}")
+        self.dist = dist
+        self.path = os.path.abspath(os.fspath(dist.bcast(os.fspath(path))))
+        self.xdmf = xdmf
+        self.xdmf_path = xdmf_path_for(self.path)
+        self.mode = self._choose_mode(mode)
+        self.index = 0
+        self._closed = False
+        self._xdmf_cache = {}  # snapshot name -> its XDMF Grid element (rank 0)
+
+        # Existing output: decided on rank 0, the same answer on every rank.
+        exists = None
+        if dist.is_root:
+            exists = os.path.exists(self.path) or bool(_rank_files_present(self.path))
+        exists = dist.bcast(exists)
+        if exists and not overwrite:
+            raise FileExistsError(
+                f"output file {self.path} already exists (allow overwriting to replace it)")
+
+        case_text = dist.bcast(case_text or "")
+        attrs = dist.bcast(dict(attrs or {}))
+        self._on_root(lambda: self._create_main(exists, case_text, attrs))
+        if self.mode == "per-rank":
+            self._collective(lambda: self._create_rank_file(), "creating the per-rank file")
+        if self.mode == "per-rank" and dist.size > 1 and mode == "auto" and dist.is_root:
+            log.warning(
+                "h5py is built without MPI: each rank writes %s and %s joins them with "
+                "HDF5 virtual datasets (keep these files together)",
+                os.path.basename(rank_file(self.path, "N")), os.path.basename(self.path))
+
+    # -- set-up -----------------------------------------------------------------------------
+    def _choose_mode(self, mode):
+        mpi = bool(h5py.get_config().mpi)
+        if mode == "auto":
+            if self.dist.size == 1:
+                return "serial"
+            return "mpio" if mpi else "per-rank"
+        if mode == "mpio" and not mpi:
+            raise ValueError("snapshot mode 'mpio' needs h5py built with MPI")
+        if mode == "serial" and self.dist.size > 1:
+            raise ValueError("snapshot mode 'serial' needs a single rank")
+        if mode == "mpio" and self.dist.size == 1:
+            return "serial"
+        return mode
+
+    def _create_main(self, exists, case_text, attrs):
+        if exists:
+            for p in [self.path, self.xdmf_path] + _rank_files_present(self.path):
+                if os.path.exists(p):
+                    os.remove(p)
+        os.makedirs(os.path.dirname(self.path), exist_ok=True)
+        with open_h5(self.path, "w", libver=LIBVER) as f:
+            f.attrs["format"] = FORMAT
+            f.attrs["layout"] = self.mode
+            f.attrs["case"] = case_text
+            f.attrs["code_version"] = code_version()
+            f.attrs["n_ranks"] = self.dist.size
+            for key, value in attrs.items():
+                f.attrs[key] = value
+            f.create_group(GROUP, track_order=True)
+            f.create_group(TOPOLOGY)
+
+    def _create_rank_file(self):
+        with open_h5(rank_file(self.path, self.dist.rank), "w", libver=LIBVER) as f:
+            f.attrs["format"] = FORMAT
+            f.attrs["layout"] = "per-rank part"
+            f.attrs["rank"] = self.dist.rank
+            f.attrs["n_ranks"] = self.dist.size
+            f.attrs["main_file"] = os.path.basename(self.path)
+            f.create_group(GROUP, track_order=True)
+
+    # -- collective error handling ------------------------------------------------------------
+    def _on_root(self, fn):
+        """Run fn on rank 0; if it fails, raise on every rank (no rank left waiting)."""
+        err = None
+        if self.dist.is_root:
+            try:
+                fn()
+            except Exception as exc:  # noqa: BLE001 - re-raised below, on every rank
+                err = exc
+        msg = self.dist.bcast(None if err is None else f"{type(err).__name__}: {err}")
+        if err is not None:
+            raise err
+        if msg is not None:
+            raise RuntimeError(f"snapshot output failed on rank 0: {msg}")
+
+    def _collective(self, fn, what):
+        """Run fn on every rank; if it fails anywhere, raise everywhere."""
+        err = None
+        try:
+            fn()
+        except Exception as exc:  # noqa: BLE001 - re-raised below
+            err = exc
+        if self.dist.any(err is not None):
+            if err is not None:
+                raise err
+            raise RuntimeError(f"snapshot output failed on another rank while {what}")
+
+    # -- writing ------------------------------------------------------------------------------
+    def _check_fields(self, fields):
+        """Validate locally, then agree on every rank; returns (arrays, n_local)."""
+        arrays, n, err = {}, None, None
+        try:
+            if not fields:
+                raise ValueError("a snapshot needs at least one field")
+            for name, value in fields.items():
+                if "/" in name or not name:
+                    raise ValueError(f"invalid snapshot field name {name!r}")
+                arr = _storage_array(name, value)
+                if n is None:
+                    n = arr.shape[0]
+                elif arr.shape[0] != n:
+                    raise ValueError(
+                        f"snapshot field '{name}' has {arr.shape[0]} rows, expected {n}")
+                arrays[name] = arr
+            if self.xdmf and ("x" not in arrays or arrays["x"].shape[1:] != (3,)):
+                raise ValueError("snapshot field 'x' of shape (n, 3) is needed for the XDMF "
+                                 "sidecar (positions are always stored with 3 components)")
+        except ValueError as exc:
+            err = exc
+        if self.dist.any(err is not None):
+            raise err or ValueError("invalid snapshot fields on another rank")
+        signature = [(k, a.dtype.str, a.shape[1:]) for k, a in arrays.items()]
+        root_sig = self.dist.bcast(signature)
+        if self.dist.any(signature != root_sig):
+            raise ValueError("snapshot fields differ between ranks (names, order, dtypes or "
+                             f"trailing shapes); rank 0 has {root_sig}, rank "
+                             f"{self.dist.rank} has {signature}")
+        return arrays, n
+
+    def write(self, step, time, fields):
+        """Write one snapshot (collective). Returns its index."""
+        if self._closed:
+            raise ValueError("write() on a closed SnapshotWriter")
+        arrays, n = self._check_fields(fields)
+        counts = self.dist.gather_counts(n)
+        offset = int(counts[: self.dist.rank].sum())
+        n_total = int(counts.sum())
+        name = snapshot_name(self.index)
+        meta = {"index": self.index, "time": float(time), "step": int(step),
+                "counts": counts, "n_total": n_total}
+
+        if self.mode == "mpio":
+            self._collective(lambda: self._write_mpio(name, meta, arrays, offset, n_total),
+                             f"writing snapshot {name}")
+        elif self.mode == "serial":
+            self._on_root(lambda: self._write_plain(self.path, name, meta, arrays))
+        else:
+            self._collective(
+                lambda: self._write_plain(rank_file(self.path, self.dist.rank), name,
+                                          dict(meta, offset=offset), arrays),
+                f"writing snapshot {name} to the per-rank file")
+            self._on_root(lambda: self._write_virtual(name, meta, arrays))
+        self.dist.barrier()
+        if self.xdmf:
+            from .xdmf import write_xdmf
+
+            self._on_root(lambda: write_xdmf(self.path, self.xdmf_path, cache=self._xdmf_cache))
+        self.index += 1
+        return self.index - 1
+
+    def _write_mpio(self, name, meta, arrays, offset, n_total):
+        with open_h5(self.path, "r+", driver="mpio", comm=self.dist.comm, libver=LIBVER) as f:
+            grp = _new_group(f, name)
+            for key, value in meta.items():
+                grp.attrs[key] = value
+            for key, arr in arrays.items():
+                dset = grp.create_dataset(key, shape=(n_total,) + arr.shape[1:], dtype=arr.dtype)
+                if n_total > 0:  # a dataset of size 0 has no storage to write to (all agree)
+                    _write_slice(dset, offset, arr, collective=True)
+            key = str(n_total)
+            if self.xdmf and n_total > 0 and key not in f[TOPOLOGY]:  # same answer on all ranks
+                dtype = connectivity_dtype(n_total)
+                dset = f[TOPOLOGY].create_dataset(key, shape=(n_total,), dtype=dtype)
+                n = len(next(iter(arrays.values())))
+                _write_slice(dset, offset, np.arange(offset, offset + n, dtype=dtype),
+                             collective=True)
+            f.flush()
+
+    def _write_plain(self, path, name, meta, arrays):
+        with open_h5(path, "r+", libver=LIBVER) as f:
+            grp = _new_group(f, name)
+            for key, value in meta.items():
+                grp.attrs[key] = value
+            for key, arr in arrays.items():
+                grp.create_dataset(key, data=np.ascontiguousarray(arr))
+            if path == self.path:  # the main file of a one-rank run (not a per-rank part)
+                self._write_topology(f, meta["n_total"])
+            f.flush()
+
+    def _write_topology(self, f, n_total):
+        """Serial writer of the shared Polyvertex connectivity (rank 0 / one rank)."""
+        if self.xdmf and n_total > 0 and str(n_total) not in f[TOPOLOGY]:
+            f[TOPOLOGY].create_dataset(
+                str(n_total), data=np.arange(n_total, dtype=connectivity_dtype(n_total)))
+
+    def _write_virtual(self, name, meta, arrays):
+        counts = meta["counts"]
+        starts = np.concatenate([[0], np.cumsum(counts)])
+        with open_h5(self.path, "r+", libver=LIBVER) as f:
+            grp = _new_group(f, name)
+            for key, value in meta.items():
+                grp.attrs[key] = value
+            for key, arr in arrays.items():
+                trailing = arr.shape[1:]
+                layout = h5py.VirtualLayout(shape=(meta["n_total"],) + trailing, dtype=arr.dtype)
+                for r, c in enumerate(counts):
+                    if c == 0:
+                        continue
+                    src = h5py.VirtualSource(
+                        os.path.basename(rank_file(self.path, r)), f"/{GROUP}/{name}/{key}",
+                        shape=(int(c),) + trailing, dtype=arr.dtype)
+                    layout[int(starts[r]):int(starts[r + 1])] = src
+                grp.create_virtual_dataset(key, layout, fillvalue=0)
+            self._write_topology(f, meta["n_total"])
+            f.flush()
+
+    def flush(self):
+        """Nothing is buffered between snapshots (each write closes the file); kept for API."""
+
+    def close(self):
+        self._closed = True
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def _new_group(f, name):
+    """The group of a new snapshot; a leftover of a write that failed half-way is replaced
+    (collective in mpio mode: every rank sees the same file)."""
+    if name in f[GROUP]:
+        del f[GROUP][name]
+    return f[GROUP].create_group(name, track_order=True)
+
+
+def connectivity_dtype(n_total):
+    return np.int32 if n_total < 2**31 else np.int64
+
+
+def _write_slice(dset, offset, arr, collective):
+    """Write arr into rows [offset, offset + n) with one H5Dwrite, even when n == 0.
+
+    h5py's ``dset[a:b] = ...`` skips the H5Dwrite call for an empty selection, which would
+    leave the other ranks waiting in a collective write; here a rank that owns nothing
+    takes part with an empty selection.
+    """
+    n = arr.shape[0]
+    trailing = arr.shape[1:]
+    fspace = dset.id.get_space()
+    if n > 0:
+        fspace.select_hyperslab((offset,) + (0,) * len(trailing), (n,) + trailing)
+        buf = np.ascontiguousarray(arr, dtype=dset.dtype)
+        mspace = h5py.h5s.create_simple(buf.shape)
+    else:
+        fspace.select_none()
+        buf = np.zeros((1,) + trailing, dtype=dset.dtype)
+        mspace = h5py.h5s.create_simple(buf.shape)
+        mspace.select_none()
+    dxpl = None
+    if collective:
+        dxpl = h5py.h5p.create(h5py.h5p.DATASET_XFER)
+        dxpl.set_dxpl_mpio(h5py.h5fd.MPIO_COLLECTIVE)
+    dset.id.write(mspace, fspace, buf, dxpl=dxpl)
+
+
+# -- reading (serial, any layout) -------------------------------------------------------------
+def list_snapshots(path):
+    """The snapshots of a run file, in order, as SnapshotInfo(index, name, step, time, n_total)."""
+    out = []
+    with open_h5(os.fspath(path), "r") as f:
+        grp = f.get(GROUP)
+        if grp is None:
+            raise ValueError(f"{path} is not a pmpmsph snapshot file (no /{GROUP} group)")
+        for name in sorted(grp.keys()):
+            a = grp[name].attrs
+            out.append(SnapshotInfo(int(name), name, int(a["step"]), float(a["time"]),
+                                    int(a["n_total"])))
+    return out
+
+
+def read_snapshot(path, index=-1, fields=None):
+    """Read one snapshot: returns (time, step, {field: array}) with fields in written order.
+
+    ``index`` counts snapshots like a Python list (-1 is the last). ``fields`` restricts the
+    names read. Works for every layout (virtual datasets are resolved by HDF5).
+    """
+    infos = list_snapshots(path)
+    if not infos:
+        raise IndexError(f"{path} holds no snapshots yet")
+    info = infos[index]
+    with open_h5(os.fspath(path), "r") as f:
+        grp = f[GROUP][info.name]
+        names = list(grp.keys())
+        if fields is not None:
+            missing = [k for k in fields if k not in grp]
+            if missing:
+                raise KeyError(f"snapshot {info.name} of {path} has no field(s) {missing}")
+            names = list(fields)
+        data = {k: grp[k][()] for k in names}
+    return info.time, info.step, data
+
+
+def read_attrs(path):
+    """Root attributes of a run file (case text, code version, n_ranks, layout, user attrs)."""
+    with open_h5(os.fspath(path), "r") as f:
+        return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}

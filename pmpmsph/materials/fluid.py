@@ -1,0 +1,63 @@
+"""Weakly compressible Newtonian fluid with the Tait equation of state (seed 003, eqs. 48-50).
+
+    sigma = 2 mu_f [d - tr(d)/3 I] - p I,   d = sym(L)            (eq. 49, Stokes: eq. 48)
+    p     = kappa [(rho/rho0)^gamma - 1],   rho/rho0 = 1/J, J = det F   (eq. 50)
+
+Stateless (``STATE_SIZE = 0``).  Parameter vector (length NPAR = 8):
+``[kappa, gamma, rho0, mu_f, 0, 0, 0, 0]``.
+
+The stored energy is the Tait potential per unit reference volume, psi(J) with
+dpsi/dJ = -p and psi(1) = 0:
+
+    psi(J) = kappa [ (J^(1-gamma) - 1)/(gamma - 1) + J - 1 ]   (gamma = 1: kappa [J - 1 - ln J]).
+
+The viscous part stores no energy.  In 2D (plane strain) the deviator still uses tr(d)/3.
+"""
+import numpy as np
+
+from ..jit import njit
+from .tensor import det_minus_one, store_sym
+
+STATE_SIZE = 0
+
+
+@njit
+def tait_pressure(jm1, kappa, gamma):
+    """p = kappa [(1/J)^gamma - 1] (seed 003, eq. 50) from jm1 = J - 1, written as
+    kappa expm1(-gamma log1p(J - 1)) for accuracy near J = 1."""
+    return kappa * np.expm1(-gamma * np.log1p(jm1))
+
+
+@njit
+def stress_tait_fluid(F, L, dt, state, par, sigma):
+    """Cauchy stress of seed 003, eq. 49 with the pressure of eq. 50."""
+    kappa = par[0]
+    gamma = par[1]
+    mu2 = 2.0 * par[3]
+    p = tait_pressure(det_minus_one(F), kappa, gamma)
+    dxx = L[0, 0]
+    dyy = L[1, 1]
+    dzz = L[2, 2]
+    tr3 = (dxx + dyy + dzz) * (1.0 / 3.0)
+    store_sym(sigma,
+              mu2 * (dxx - tr3) - p,
+              mu2 * (dyy - tr3) - p,
+              mu2 * (dzz - tr3) - p,
+              par[3] * (L[0, 1] + L[1, 0]),
+              par[3] * (L[1, 2] + L[2, 1]),
+              par[3] * (L[0, 2] + L[2, 0]))
+
+
+@njit(fastmath=False)
+def energy_tait_fluid(F, state, par):
+    """Tait potential psi(J), dpsi/dJ = -p(J), psi(1) = 0 (per unit reference volume)."""
+    kappa = par[0]
+    gamma = par[1]
+    jm1 = det_minus_one(F)
+    lnJ = np.log1p(jm1)
+    g1 = gamma - 1.0
+    if abs(g1) < 1e-12:
+        term = -lnJ
+    else:
+        term = np.expm1(-g1 * lnJ) / g1
+    return kappa * (term + jm1)

@@ -1,0 +1,161 @@
+"""Allocation-free 3x3 helpers for the constitutive kernels.
+
+Symmetric tensors travel as 6-tuples of scalars in the order (xx, yy, zz, xy, yz, xz),
+the same order as the Maxwell state vector.  Everything is written out component by
+component so that the compiled code needs no temporary arrays.
+
+The energy helpers (and the ``energy_*`` functions of the models) are compiled with
+``fastmath=False``: they are written in cancellation-free forms (J - 1 from the invariants of
+F - I, log1p/expm1/sinh) that reassociation would undo, and they are only used for
+diagnostics.
+"""
+import numpy as np
+
+from ..jit import njit
+
+
+@njit
+def det3(A):
+    """Determinant of a general 3x3 array."""
+    return (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1])
+            - A[0, 1] * (A[1, 0] * A[2, 2] - A[1, 2] * A[2, 0])
+            + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
+
+
+@njit(fastmath=False)
+def det_minus_one(F):
+    """J - 1 = det(F) - 1 without cancellation: with H = F - I,
+    det(I + H) - 1 = tr H + I2(H) + det H (I2: sum of the principal 2x2 minors)."""
+    h00 = F[0, 0] - 1.0
+    h11 = F[1, 1] - 1.0
+    h22 = F[2, 2] - 1.0
+    i2 = (h00 * h11 + h11 * h22 + h00 * h22
+          - F[0, 1] * F[1, 0] - F[1, 2] * F[2, 1] - F[0, 2] * F[2, 0])
+    i3 = (h00 * (h11 * h22 - F[1, 2] * F[2, 1])
+          - F[0, 1] * (F[1, 0] * h22 - F[1, 2] * F[2, 0])
+          + F[0, 2] * (F[1, 0] * F[2, 1] - h11 * F[2, 0]))
+    return (h00 + h11 + h22) + i2 + i3
+
+
+@njit(fastmath=False)
+def trace_C_minus_three(F):
+    """tr(F^T F) - 3 = |F - I|^2 + 2 tr(F - I), accurate for small strain."""
+    s = 0.0
+    for i in range(3):
+        for j in range(3):
+            h = F[i, j] - 1.0 if i == j else F[i, j]
+            s += h * h
+    return s + 2.0 * ((F[0, 0] - 1.0) + (F[1, 1] - 1.0) + (F[2, 2] - 1.0))
+
+
+@njit
+def sym_det(xx, yy, zz, xy, yz, xz):
+    """Determinant of a symmetric tensor given by its 6 components."""
+    return (xx * yy * zz + 2.0 * xy * yz * xz
+            - xx * yz * yz - yy * xz * xz - zz * xy * xy)
+
+
+@njit
+def sym_inv(xx, yy, zz, xy, yz, xz):
+    """Inverse of a symmetric tensor (6-tuple in, 6-tuple out) via the adjugate."""
+    cxx = yy * zz - yz * yz
+    cyy = xx * zz - xz * xz
+    czz = xx * yy - xy * xy
+    cxy = yz * xz - xy * zz
+    cyz = xy * xz - xx * yz
+    cxz = xy * yz - yy * xz
+    d = xx * cxx + xy * cxy + xz * cxz
+    r = 1.0 / d
+    return cxx * r, cyy * r, czz * r, cxy * r, cyz * r, cxz * r
+
+
+@njit
+def right_cauchy_green(F):
+    """C = F^T F as a 6-tuple."""
+    cxx = F[0, 0] * F[0, 0] + F[1, 0] * F[1, 0] + F[2, 0] * F[2, 0]
+    cyy = F[0, 1] * F[0, 1] + F[1, 1] * F[1, 1] + F[2, 1] * F[2, 1]
+    czz = F[0, 2] * F[0, 2] + F[1, 2] * F[1, 2] + F[2, 2] * F[2, 2]
+    cxy = F[0, 0] * F[0, 1] + F[1, 0] * F[1, 1] + F[2, 0] * F[2, 1]
+    cyz = F[0, 1] * F[0, 2] + F[1, 1] * F[1, 2] + F[2, 1] * F[2, 2]
+    cxz = F[0, 0] * F[0, 2] + F[1, 0] * F[1, 2] + F[2, 0] * F[2, 2]
+    return cxx, cyy, czz, cxy, cyz, cxz
+
+
+@njit
+def left_cauchy_green(F):
+    """B = F F^T as a 6-tuple."""
+    bxx = F[0, 0] * F[0, 0] + F[0, 1] * F[0, 1] + F[0, 2] * F[0, 2]
+    byy = F[1, 0] * F[1, 0] + F[1, 1] * F[1, 1] + F[1, 2] * F[1, 2]
+    bzz = F[2, 0] * F[2, 0] + F[2, 1] * F[2, 1] + F[2, 2] * F[2, 2]
+    bxy = F[0, 0] * F[1, 0] + F[0, 1] * F[1, 1] + F[0, 2] * F[1, 2]
+    byz = F[1, 0] * F[2, 0] + F[1, 1] * F[2, 1] + F[1, 2] * F[2, 2]
+    bxz = F[0, 0] * F[2, 0] + F[0, 1] * F[2, 1] + F[0, 2] * F[2, 2]
+    return bxx, byy, bzz, bxy, byz, bxz
+
+
+@njit
+def push_forward_sym(F, sxx, syy, szz, sxy, syz, sxz):
+    """F S F^T for a symmetric S (6-tuple in, 6-tuple out)."""
+    # rows of G = F S
+    g00 = F[0, 0] * sxx + F[0, 1] * sxy + F[0, 2] * sxz
+    g01 = F[0, 0] * sxy + F[0, 1] * syy + F[0, 2] * syz
+    g02 = F[0, 0] * sxz + F[0, 1] * syz + F[0, 2] * szz
+    g10 = F[1, 0] * sxx + F[1, 1] * sxy + F[1, 2] * sxz
+    g11 = F[1, 0] * sxy + F[1, 1] * syy + F[1, 2] * syz
+    g12 = F[1, 0] * sxz + F[1, 1] * syz + F[1, 2] * szz
+    g20 = F[2, 0] * sxx + F[2, 1] * sxy + F[2, 2] * sxz
+    g21 = F[2, 0] * sxy + F[2, 1] * syy + F[2, 2] * syz
+    g22 = F[2, 0] * sxz + F[2, 1] * syz + F[2, 2] * szz
+    # G F^T (symmetric)
+    xx = g00 * F[0, 0] + g01 * F[0, 1] + g02 * F[0, 2]
+    yy = g10 * F[1, 0] + g11 * F[1, 1] + g12 * F[1, 2]
+    zz = g20 * F[2, 0] + g21 * F[2, 1] + g22 * F[2, 2]
+    xy = g00 * F[1, 0] + g01 * F[1, 1] + g02 * F[1, 2]
+    yz = g10 * F[2, 0] + g11 * F[2, 1] + g12 * F[2, 2]
+    xz = g00 * F[2, 0] + g01 * F[2, 1] + g02 * F[2, 2]
+    return xx, yy, zz, xy, yz, xz
+
+
+@njit
+def store_sym(sigma, xx, yy, zz, xy, yz, xz):
+    """Write a symmetric tensor (6 scalars) into the 3x3 array `sigma`."""
+    sigma[0, 0] = xx
+    sigma[1, 1] = yy
+    sigma[2, 2] = zz
+    sigma[0, 1] = xy
+    sigma[1, 0] = xy
+    sigma[1, 2] = yz
+    sigma[2, 1] = yz
+    sigma[0, 2] = xz
+    sigma[2, 0] = xz
+
+
+@njit
+def inv_cbrt_sq(J):
+    """J^(-2/3), defined through the real cube root (finite also for J < 0)."""
+    return 1.0 / np.cbrt(J * J)
+
+
+@njit
+def hartmann_neff_cauchy(bxx, byy, bzz, bxy, byz, bxz, J, mu, k, sigma):
+    """sigma = [mu dev(b) + k/10 (J^5 - J^-5) 1] / J for a unimodular b
+    (Shutov & Klyuchantsev, seed 004, eq. 11; used with b = B-bar by the
+    hyperelastic model and with b = B-bar_e by the Maxwell model)."""
+    tr3 = (bxx + byy + bzz) * (1.0 / 3.0)
+    J2 = J * J
+    J5 = J2 * J2 * J
+    vol = 0.1 * k * (J5 - 1.0 / J5)
+    rJ = 1.0 / J
+    store_sym(sigma,
+              (mu * (bxx - tr3) + vol) * rJ,
+              (mu * (byy - tr3) + vol) * rJ,
+              (mu * (bzz - tr3) + vol) * rJ,
+              mu * bxy * rJ, mu * byz * rJ, mu * bxz * rJ)
+
+
+@njit(fastmath=False)
+def hartmann_neff_volumetric_energy(lnJ, k):
+    """k/50 (J^5 + J^-5 - 2) (seed 004, eq. 12), evaluated as the identical
+    k/50 (2 sinh(5/2 ln J))^2, which has no cancellation near J = 1."""
+    s = np.sinh(2.5 * lnJ)
+    return 0.08 * k * s * s

@@ -1,0 +1,126 @@
+"""The one object that owns MPI (Dedalus style): every other module asks it.
+
+`Distributor(comm)` wraps an mpi4py communicator and offers the few collective operations the
+solver needs on plain numbers and numpy arrays. It is the only place outside `parallel/`
+that touches mpi4py, and user code never sees a communicator.
+"""
+import os
+
+import numpy as np
+
+
+def _world():
+    from mpi4py import MPI
+
+    return MPI.COMM_WORLD
+
+
+class Distributor:
+    """MPI context of a run: rank, size, reductions, exscan, broadcast, error agreement."""
+
+    def __init__(self, comm=None):
+        self.comm = _world() if comm is None else comm
+        self.rank = self.comm.Get_rank()
+        self.size = self.comm.Get_size()
+
+    @property
+    def is_root(self):
+        return self.rank == 0
+
+    # -- reductions on scalars and arrays ---------------------------------------------------
+    def sum(self, value):
+        """Global sum of a number or numpy array (same shape on every rank)."""
+        if self.size == 1:
+            return value
+        from mpi4py import MPI
+
+        if np.isscalar(value):
+            return self.comm.allreduce(value, op=MPI.SUM)
+        arr = np.ascontiguousarray(value, dtype=np.float64)
+        out = np.empty_like(arr)
+        self.comm.Allreduce(arr, out, op=MPI.SUM)
+        return out
+
+    def min(self, value):
+        if self.size == 1:
+            return value
+        from mpi4py import MPI
+
+        return self.comm.allreduce(value, op=MPI.MIN)
+
+    def max(self, value):
+        if self.size == 1:
+            return value
+        from mpi4py import MPI
+
+        return self.comm.allreduce(value, op=MPI.MAX)
+
+    def any(self, flag):
+        """True on every rank if `flag` is true on any rank (collective decisions, no hangs)."""
+        return bool(self.max(int(bool(flag))))
+
+    def exscan(self, count):
+        """Exclusive prefix sum of an integer over ranks (offset of this rank's slice)."""
+        if self.size == 1:
+            return 0
+        from mpi4py import MPI
+
+        out = self.comm.exscan(int(count), op=MPI.SUM)
+        return 0 if out is None else int(out)
+
+    def gather_counts(self, count):
+        """Every rank's count, on every rank (np.int64 array of length size)."""
+        if self.size == 1:
+            return np.array([count], dtype=np.int64)
+        return np.array(self.comm.allgather(int(count)), dtype=np.int64)
+
+    def bcast(self, obj, root=0):
+        if self.size == 1:
+            return obj
+        return self.comm.bcast(obj, root=root)
+
+    def barrier(self):
+        if self.size > 1:
+            self.comm.Barrier()
+
+    def abort(self, code):
+        """End every rank now (used when one rank fails outside a collective decision)."""
+        if self.size > 1:
+            self.comm.Abort(code)
+        raise SystemExit(code)
+
+
+def _source_digest():
+    """Hash of the package's sources: Numba's cache only notices changes in a kernel's own
+    file, not in the kernels it calls, so the cache directory is keyed by all of them."""
+    import hashlib
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    h = hashlib.sha1()
+    for folder, _, files in sorted(os.walk(root)):
+        for name in sorted(files):
+            if name.endswith(".py"):
+                with open(os.path.join(folder, name), "rb") as fh:
+                    h.update(fh.read())
+    return h.hexdigest()[:12]
+
+
+def configure_numba_cache():
+    """Point Numba's cache at a directory per source version and per rank.
+
+    Per rank, so that ranks compiling at once never race on the same files; per source
+    version, so that an edited callee never leaves a stale compiled caller behind. Must run
+    before numba compiles anything; the rank is read from the launcher's environment so that
+    mpi4py need not be imported first. An explicit NUMBA_CACHE_DIR is used as the base.
+    """
+    if os.environ.get("PMPMSPH_CACHE_SET"):
+        return
+    rank = "serial"
+    for var in ("OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK", "MV2_COMM_WORLD_RANK"):
+        if var in os.environ:
+            rank = "rank" + os.environ[var]
+            break
+    base = os.environ.get("NUMBA_CACHE_DIR") or os.path.join(
+        os.path.expanduser("~"), ".cache", "pmpmsph-numba")
+    os.environ["NUMBA_CACHE_DIR"] = os.path.join(base, _source_digest(), rank)
+    os.environ["PMPMSPH_CACHE_SET"] = "1"

@@ -1,0 +1,121 @@
+"""`ParticleSet`: a registry of named, contiguous struct-of-arrays fields (DESIGN.md §2).
+
+Stages and materials *declare* the fields they need; only declared fields are allocated,
+migrated, copied to halos and written. Owned particles are rows [0, n_owned); halo copies
+(when a later stage asks for them) follow and are never written back.
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class FieldSpec:
+    name: str
+    shape: tuple = ()          # per-particle shape, e.g. (3, 3)
+    dtype: object = np.float64
+    migrate: bool = True       # travels with the particle between ranks
+    halo: bool = False         # copied to halo particles
+    output: bool = False       # written to snapshots
+    fill: object = 0           # initial value ("identity" for a 3x3 identity)
+
+
+#: fields every scene has (DESIGN.md §2: kinematic state shared by both methods)
+CORE_FIELDS = (
+    FieldSpec("gid", (), np.int64, halo=True, output=True),
+    FieldSpec("method", (), np.int8, halo=True),
+    FieldSpec("body", (), np.int32, halo=True, output=True),
+    FieldSpec("mat", (), np.int32, halo=True),
+    FieldSpec("x", ("dim",), halo=True, output=True),
+    FieldSpec("v", ("dim",), halo=True, output=True),
+    FieldSpec("mass", (), halo=True, output=True),
+    FieldSpec("vol0", ()),
+    FieldSpec("vol", (), halo=True, output=True),
+    FieldSpec("F", (3, 3), halo=True, output=True, fill="identity"),
+    FieldSpec("sigma", (3, 3), halo=True, output=True),
+)
+
+
+class ParticleSet:
+    """Named arrays of equal length; `n_owned` rows are owned, the rest are halo copies."""
+
+    def __init__(self, dim, capacity=0):
+        self.dim = dim
+        self.specs = {}
+        self.arrays = {}
+        self.n_owned = 0
+        self.n_total = 0
+        for spec in CORE_FIELDS:
+            self.declare(spec)
+
+    # -- declaration ----------------------------------------------------------------------
+    def _shape(self, spec, n):
+        return (n,) + tuple(self.dim if s == "dim" else s for s in spec.shape)
+
+    def declare(self, spec):
+        """Add a field (idempotent for an identical spec)."""
+        if spec.name in self.specs:
+            if self.specs[spec.name] != spec:
+                raise ValueError(f"field {spec.name!r} declared twice with different specs")
+            return
+        self.specs[spec.name] = spec
+        arr = np.zeros(self._shape(spec, self.n_total), dtype=spec.dtype)
+        self._fill(spec, arr)
+        self.arrays[spec.name] = arr
+
+    @staticmethod
+    def _fill(spec, arr):
+        if spec.fill == "identity":
+            arr[...] = np.eye(arr.shape[-1])
+        elif spec.fill:
+            arr[...] = spec.fill
+
+    def __contains__(self, name):
+        return name in self.arrays
+
+    def __getitem__(self, name):
+        return self.arrays[name]
+
+    def __setitem__(self, name, value):
+        arr = self.arrays[name]
+        arr[...] = value
+
+    # -- size changes -----------------------------------------------------------------------
+    def append(self, values):
+        """Append owned particles given as a dict of arrays (fields not given get defaults)."""
+        n_new = len(next(iter(values.values())))
+        if self.n_total != self.n_owned:
+            raise RuntimeError("drop halo particles before appending owned ones")
+        for name, spec in self.specs.items():
+            extra = np.zeros(self._shape(spec, n_new), dtype=spec.dtype)
+            self._fill(spec, extra)
+            if name in values:
+                extra[...] = values[name]
+            self.arrays[name] = np.ascontiguousarray(
+                np.concatenate([self.arrays[name][: self.n_owned], extra]))
+        unknown = set(values) - set(self.specs)
+        if unknown:
+            raise KeyError(f"undeclared particle fields {sorted(unknown)}")
+        self.n_owned += n_new
+        self.n_total = self.n_owned
+
+    def take(self, index):
+        """Keep only the owned rows `index` (in that order): used for sorting and migration."""
+        for name in self.arrays:
+            self.arrays[name] = np.ascontiguousarray(self.arrays[name][index])
+        self.n_owned = self.n_total = len(index)
+
+    def owned(self, name):
+        return self.arrays[name][: self.n_owned]
+
+    def fields(self, *, migrate=None, halo=None, output=None):
+        out = []
+        for name, spec in self.specs.items():
+            if migrate is not None and spec.migrate != migrate:
+                continue
+            if halo is not None and spec.halo != halo:
+                continue
+            if output is not None and spec.output != output:
+                continue
+            out.append(name)
+        return out

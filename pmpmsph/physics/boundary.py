@@ -1,0 +1,48 @@
+"""Grid boundary conditions and gates: case boundaries -> flat per-node arrays for the kernel.
+
+A boundary with `until = t` is a gate: it acts while time < t and is then removed (thesis
+§8.4, dam break). The node arrays are rebuilt only when the set of active boundaries changes.
+"""
+import numpy as np
+
+from ..kernels.mpm import BC_CODES, apply_grid_bc
+
+
+class GridBoundaries:
+    def __init__(self, specs, grid):
+        self.grid = grid
+        self.specs = specs
+        dim = grid.dim
+        self.parts = []
+        for spec in specs:
+            if spec.region.face:
+                nodes = grid.nodes_on_face(spec.region.face)
+            else:
+                nodes = grid.nodes_in_box(spec.region.lo, spec.region.hi)
+            normal = np.zeros(3)
+            normal[:dim] = spec.normal if spec.normal else 0.0
+            self.parts.append((nodes, BC_CODES[spec.kind], normal, spec.friction))
+        self.active_key = None
+        self._arrays = None
+
+    def _build(self, active):
+        nodes, kinds, normals, mus = [], [], [], []
+        for j in active:
+            nd, kind, normal, mu = self.parts[j]
+            nodes.append(nd)
+            kinds.append(np.full(len(nd), kind, np.int64))
+            normals.append(np.tile(normal, (len(nd), 1)))
+            mus.append(np.full(len(nd), mu))
+        if not nodes:
+            return (np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros((0, 3)), np.zeros(0))
+        return (np.concatenate(nodes), np.concatenate(kinds), np.concatenate(normals),
+                np.concatenate(mus))
+
+    def apply(self, time, vel, dv):
+        active = tuple(j for j, s in enumerate(self.specs) if time < s.until)
+        if active != self.active_key:
+            self._arrays = self._build(active)
+            self.active_key = active
+        node, kind, normal, mu = self._arrays
+        if len(node):
+            apply_grid_bc(self.grid.dim, node, kind, normal, mu, vel, dv)

@@ -1,0 +1,68 @@
+"""The background grid of MPM (DESIGN.md §2): nodal arrays over this rank's nodes.
+
+Nodes are numbered by a flat index with C-order strides over (cells + 1 + 2 pad) nodes per
+axis; `pad` layers of nodes lie outside the domain so that wide stencils of particles at a
+wall stay inside the arrays (boundary conditions act on them too). A scene without MPM
+builds no Grid.
+"""
+import numpy as np
+
+from ..kernels.shapes import GRID_PAD
+
+
+class Grid:
+    def __init__(self, spec, nfields=1, with_normals=False):
+        self.spec = spec
+        self.dim = spec.dim
+        self.pad = GRID_PAD
+        self.dx = float(spec.cell_size[0])
+        if any(abs(h - self.dx) > 1e-12 * self.dx for h in spec.cell_size):
+            # one cell size for all axes keeps stencils isotropic (thesis uses dx = dy)
+            raise ValueError("non-square cells")
+        self.inv_dx = 1.0 / self.dx
+        self.origin = np.array(spec.origin, dtype=np.float64)
+        self.shape = tuple(int(n) + 1 + 2 * self.pad for n in spec.cells)
+        strides = np.ones(self.dim, dtype=np.int64)
+        for a in range(self.dim - 2, -1, -1):
+            strides[a] = strides[a + 1] * self.shape[a + 1]
+        self.strides = strides
+        self.n_nodes = int(np.prod(self.shape))
+        self.nfields = nfields
+        nf, nn, d = nfields, self.n_nodes, self.dim
+        self.mass = np.zeros((nf, nn))
+        self.mom = np.zeros((nf, nn, d))
+        self.force = np.zeros((nf, nn, d))
+        self.vel = np.zeros((nf, nn, d))
+        self.dv = np.zeros((nf, nn, d))
+        self.mgrad = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
+        #: the domain and the band around it in which particles may be (one cell outside)
+        self.lo = self.origin - self.dx
+        self.hi = np.array(spec.upper) + self.dx
+
+    def reset(self):
+        self.mass.fill(0.0)
+        self.mom.fill(0.0)
+        self.force.fill(0.0)
+        if self.mgrad.shape[1]:
+            self.mgrad.fill(0.0)
+
+    def node_coords(self):
+        """Physical coordinates of all nodes, (n_nodes, dim)."""
+        idx = np.indices(self.shape).reshape(self.dim, -1).T
+        return self.origin + (idx - self.pad) * self.dx
+
+    def nodes_on_face(self, face):
+        """Flat indices of nodes on a domain face and outside it (the padding)."""
+        axis = "xyz".index(face[0])
+        idx = np.indices(self.shape).reshape(self.dim, -1)[axis]
+        if face[1] == "-":
+            sel = idx <= self.pad
+        else:
+            sel = idx >= self.pad + self.spec.cells[axis]
+        return np.nonzero(sel)[0].astype(np.int64)
+
+    def nodes_in_box(self, lo, hi):
+        xs = self.node_coords()
+        tol = 1e-9 * self.dx
+        sel = np.all((xs >= np.array(lo) - tol) & (xs <= np.array(hi) + tol), axis=1)
+        return np.nonzero(sel)[0].astype(np.int64)

@@ -1,0 +1,77 @@
+"""Particle loads: surface traction with a linear ramp, and prescribed particle velocities.
+
+Traction (force per area) acts on the particles of a body inside a box, each carrying the
+area vol0 / spacing_n of its lattice cell normal to the loaded face, so the total force is
+traction x face area for one layer of particles: f_p(t) = min(t/ramp, 1) t A_p.
+"""
+import numpy as np
+
+from ..particles import FieldSpec
+
+
+def _in_region(x, region):
+    lo = np.array(region.lo, float)
+    hi = np.array(region.hi, float)
+    return np.all((x >= lo) & (x <= hi), axis=1)
+
+
+class TractionLoads:
+    """Holds `fext0` (full-load force per particle); writes `fext` each step."""
+
+    FIELDS = (FieldSpec("fext0", ("dim",)), FieldSpec("fext", ("dim",), migrate=False))
+
+    def __init__(self, specs, particles):
+        self.specs = specs
+        self.ramps = [s.ramp for s in specs]
+        self.particles = particles
+
+    @staticmethod
+    def seed(specs, body_index, x, vol, spacing, body_name, dim):
+        """Full-load force of each new particle of one body (used while seeding)."""
+        f = np.zeros((len(x), dim))
+        for s in specs:
+            if s.body != body_name:
+                continue
+            sel = _in_region(x, s.region)
+            axis = "xyz".index(s.normal[0])
+            area = vol[sel] / spacing[axis]
+            f[sel] += np.outer(area, np.array(s.traction))
+        return f
+
+    def update(self, time):
+        ramp = max(self.ramps) if self.ramps else 0.0
+        scale = 1.0 if ramp <= 0.0 else min(time / ramp, 1.0)
+        p = self.particles
+        n = p.n_owned
+        np.multiply(p["fext0"][:n], scale, out=p["fext"][:n])
+
+
+class PrescribedVelocity:
+    """Particles of a body inside a region (at t = 0) with fixed velocity components."""
+
+    FIELDS = (FieldSpec("vpres_id", (), np.int32, fill=-1),)
+
+    def __init__(self, specs, particles):
+        self.specs = specs
+        self.particles = particles
+
+    @staticmethod
+    def seed(specs, x, body_name):
+        ids = np.full(len(x), -1, np.int32)
+        for j, s in enumerate(specs):
+            if s.body == body_name:
+                ids[_in_region(x, s.region)] = j
+        return ids
+
+    def apply(self, time):
+        p = self.particles
+        n = p.n_owned
+        ids = p["vpres_id"][:n]
+        v = p["v"]
+        for j, s in enumerate(self.specs):
+            if not (s.start <= time < s.until):
+                continue
+            sel = ids == j
+            for a, val in enumerate(s.velocity):
+                if val is not None:
+                    v[:n, a][sel] = val

@@ -1,0 +1,115 @@
+"""MPMStage: one explicit MPM step over the owned MPM particles (DESIGN.md §3, step 2).
+
+USL (thesis §7.4):  P2G(m, mv, f) -> grid solve + BCs -> G2P(v, x, L, F, sigma)
+USF:                P2G(m, mv) -> grid v + BCs -> G2P(L, F, sigma) -> P2G(m, mv, f)
+                    -> grid solve + BCs -> G2P(v, x)
+MUSL (Sulsky):      P2G(m, mv, f) -> grid solve + BCs -> G2P(v, x) -> P2G(m, mv) with the
+                    new particle velocities -> grid v + BCs -> G2P(L, F, sigma)
+Multi-field contact (Bardenhagen et al. 2001) runs after every grid solve when enabled.
+"""
+import numpy as np
+
+from ..kernels.contact import multi_field_contact
+from ..kernels.mpm import g2p, grid_velocity, p2g
+from ..kernels.shapes import SHAPE_CODES, static_tags
+from ..particles import FieldSpec
+from .boundary import GridBoundaries
+from .grid import Grid
+
+
+class MPMStage:
+    def __init__(self, case, particles, materials, halo_exchange=None):
+        self.case = case
+        self.p = particles
+        spec = case.mpm
+        self.dim = case.dim
+        self.kind = SHAPE_CODES[spec.shape]
+        self.tags = static_tags(self.dim, self.kind)
+        self.transfer = spec.transfer
+        self.flip = spec.flip
+        self.damping = spec.damping
+        self.mass_cutoff = spec.mass_cutoff
+        self.multi = spec.contact == "multi"
+        self.friction = spec.friction
+        nfields = len(case.bodies) if self.multi else 1
+        self.grid = Grid(case.grid, nfields=nfields, with_normals=self.multi)
+        self.bcs = GridBoundaries(case.boundaries, self.grid)
+        self.gravity = np.zeros(3)
+        self.gravity[: self.dim] = case.gravity
+        self.mtypes, self.mparams = materials
+        self.halo_exchange = halo_exchange
+        self._empty_i = np.zeros(0, np.int32)
+        self._empty_v = np.zeros((0, self.dim))
+        self._empty_t = np.zeros((0, 3, 3))
+        self._empty_s = np.zeros((1, 0))
+
+    @staticmethod
+    def fields(case):
+        """Fields this stage needs beyond the core ones."""
+        out = []
+        if case.mpm.shape == "gimp":
+            out.append(FieldSpec("lp", ("dim",)))
+        if any(b.stress for b in case.bodies):
+            out.append(FieldSpec("prestress", (3, 3)))
+        return out
+
+    # -- the loops ------------------------------------------------------------------------------
+    def _arrays(self):
+        p = self.p
+        n = p.n_owned
+        lp = p["lp"][:n] if "lp" in p else np.full((1, self.dim), 0.5)
+        fext = p["fext"][:n] if "fext" in p else self._empty_v
+        pfield = p["body"][:n] if self.multi else self._empty_i
+        pre = p["prestress"][:n] if "prestress" in p else self._empty_t
+        mstate = p["mstate"][:n] if "mstate" in p else np.zeros((n, 0))
+        return n, lp, fext, pfield, pre, mstate
+
+    def _p2g(self, with_force):
+        g, p = self.grid, self.p
+        n, lp, fext, pfield, _, _ = self._arrays()
+        g.reset()
+        p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n],
+            p["sigma"][:n], fext, lp, pfield, g.origin, g.inv_dx, g.strides, with_force,
+            self.multi, g.mass, g.mom, g.force, g.mgrad)
+        # GridHalo.reduce goes here on more than one rank (MPI issue)
+
+    def _solve(self, dt, time, with_force):
+        g = self.grid
+        grid_velocity(self.dim, g.mass, g.mom, g.force, g.vel, g.dv, dt, self.gravity,
+                      self.damping, self.mass_cutoff, with_force)
+        if self.multi:
+            multi_field_contact(self.dim, g.mass, g.mgrad, g.vel, g.dv, self.friction,
+                                self.mass_cutoff)
+        self.bcs.apply(time, g.vel, g.dv)
+        # GridHalo.broadcast goes here on more than one rank
+
+    def _g2p(self, dt, kinematics, deformation):
+        g, p = self.grid, self.p
+        n, lp, _, pfield, pre, mstate = self._arrays()
+        return g2p(*self.tags, p["x"][:n], p["v"][:n], p["F"][:n], p["sigma"][:n],
+                   p["vol"][:n], p["vol0"][:n], lp, pfield, p["mat"][:n], self.mtypes,
+                   self.mparams, mstate, pre, g.vel, g.dv, g.origin, g.inv_dx, g.strides, dt,
+                   self.flip, kinematics, deformation, g.lo, g.hi)
+
+    def step(self, dt, time):
+        """Advance owned MPM particles by dt; returns the index of a failed particle or -1."""
+        if self.transfer == "usl":
+            self._p2g(True)
+            self._solve(dt, time, True)
+            return self._g2p(dt, True, True)
+        if self.transfer == "usf":
+            self._p2g(False)
+            self._solve(dt, time, False)
+            bad = self._g2p(dt, False, True)
+            self._p2g(True)
+            self._solve(dt, time, True)
+            bad2 = self._g2p(dt, True, False)
+            return bad if bad >= 0 else bad2
+        # MUSL
+        self._p2g(True)
+        self._solve(dt, time, True)
+        bad = self._g2p(dt, True, False)
+        self._p2g(False)
+        self._solve(dt, time, False)
+        bad2 = self._g2p(dt, False, True)
+        return bad if bad >= 0 else bad2

@@ -1,0 +1,1 @@
+"""Geometry and seeding: body shapes -> particle positions and volumes."""

@@ -1,0 +1,252 @@
+"""Simulation: owns particles, grid stages, decomposition and writers (DESIGN.md §1, §3).
+
+`step()` runs the fixed stage order of DESIGN.md §3 (only the stages the scene needs exist);
+`run()` loops, schedules output and diagnostics, and turns a failing particle into a
+`RunError` decided collectively on all ranks.
+"""
+import logging
+import math
+import os
+import time
+
+import numpy as np
+
+from .build import build_particles, material_arrays
+from .errors import ConfigError, RunError
+from .kernels.diagnostics import max_signal_speed, particle_sums
+from .parallel.distributor import Distributor
+from .physics.loads import PrescribedVelocity, TractionLoads
+from .physics.mpm import MPMStage
+from .timing import Timers
+
+log = logging.getLogger("pmpmsph")
+
+DIAG_COLUMNS = ("time", "step", "dt", "kinetic", "strain", "potential", "total",
+                "px", "py", "pz", "mass")
+#: fields a snapshot may hold: stored ones, plus `rho` derived from mass and volume
+DERIVED_FIELDS = ("rho",)
+
+
+class Simulation:
+    def __init__(self, case, dist=None, out_dir=None, overwrite=False, write_output=True):
+        t0 = time.perf_counter()
+        self.case = case
+        self.dist = dist or Distributor()
+        if self.dist.size > 1:
+            raise ConfigError("<mpirun -n>", f"running on {self.dist.size} ranks needs the slab "
+                              "decomposition, which this build does not have yet: use one rank")
+        self.timers = Timers()
+        self.time = 0.0
+        self.step_count = 0
+        self.dim = case.dim
+        self.particles = build_particles(case)
+        self.materials = material_arrays(case)
+        self.gravity = np.zeros(3)
+        self.gravity[: self.dim] = case.gravity
+        self.mpm = MPMStage(case, self.particles, self.materials) if case.has_mpm else None
+        self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
+        self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
+                           if case.prescribed else None)
+        self.h = min(case.grid.cell_size)
+        self.dt = self._initial_dt()
+        self.out_dir = out_dir
+        self.writer = self.diag = None
+        self._sums = np.zeros(7)
+        self._last_snapshot_step = -1
+        self._next_snapshot_time = 0.0
+        if write_output and out_dir is not None:
+            self._open_output(overwrite)
+        self.timers.add("setup", time.perf_counter() - t0)
+
+    # -- time step --------------------------------------------------------------------------
+    def signal_speed(self):
+        p = self.particles
+        n = p.n_owned
+        mtypes, mparams = self.materials
+        c = max_signal_speed(self.dim, p["v"][:n], p["F"][:n], p["mat"][:n], mtypes, mparams)
+        return self.dist.max(c)
+
+    def stable_dt(self):
+        """CFL limit with Courant number 1: h / max(c + |v|)."""
+        c = self.signal_speed()
+        return self.h / c if c > 0 else math.inf
+
+    def _initial_dt(self):
+        tspec = self.case.time
+        limit = self.stable_dt()
+        if tspec.dt is not None:
+            if tspec.dt > limit:
+                raise ConfigError("time.dt", f"{tspec.dt:g} is above the stable limit "
+                                  f"{limit:.4g} (= cell size / (wave speed + |v|))")
+            return tspec.dt
+        return tspec.cfl * limit
+
+    def _update_dt(self):
+        if self.case.time.cfl is not None:
+            limit = self.stable_dt()
+            if not math.isfinite(limit) or limit <= 0:
+                raise RunError(self.step_count, -1, "no finite time step (NaN velocity/stress)")
+            self.dt = self.case.time.cfl * limit
+
+    # -- output ------------------------------------------------------------------------------
+    def _open_output(self, overwrite):
+        from .io.diagnostics import DiagnosticsCSV
+        from .io.snapshots import SnapshotWriter, code_version
+
+        os.makedirs(self.out_dir, exist_ok=True) if self.dist.is_root else None
+        self.dist.barrier()
+        h5 = os.path.join(self.out_dir, "particles.h5")
+        csv = os.path.join(self.out_dir, "diagnostics.csv")
+        exists = self.dist.bcast(os.path.exists(h5) or os.path.exists(csv))
+        if exists and not overwrite:
+            raise ConfigError("--out", f"output already present in {self.out_dir}; pass "
+                              "--overwrite to replace it")
+        self.writer = SnapshotWriter(self.dist, h5, case_text=self.case.text,
+                                     attrs={"case_name": self.case.name, "dim": self.dim,
+                                            "code_version": code_version()},
+                                     overwrite=True)
+        self.diag = DiagnosticsCSV(self.dist, csv, DIAG_COLUMNS, overwrite=True)
+
+    def snapshot_fields(self):
+        p = self.particles
+        n = p.n_owned
+        out = {}
+        for name in self.case.output.fields:
+            if name == "rho":
+                out["rho"] = p["mass"][:n] / p["vol"][:n]
+            elif name in p:
+                arr = p[name][:n]
+                if name in ("x", "v") and self.dim < 3:  # XDMF geometry wants 3 components
+                    full = np.zeros((n, 3))
+                    full[:, : self.dim] = arr
+                    arr = full
+                out[name] = arr
+        return out
+
+    def write_snapshot(self):
+        if self.writer is None:
+            return
+        with self.timers.phase("output"):
+            self.writer.write(self.step_count, self.time, self.snapshot_fields())
+        self._last_snapshot_step = self.step_count
+
+    def diagnostics(self):
+        """Global sums as a dict (every rank gets the same numbers)."""
+        p = self.particles
+        n = p.n_owned
+        mtypes, mparams = self.materials
+        mstate = p["mstate"][:n] if "mstate" in p else np.zeros((n, 0))
+        particle_sums(self.dim, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol0"][:n],
+                      p["F"][:n], p["mat"][:n], mtypes, mparams, mstate, self.gravity,
+                      self._sums)
+        s = self.dist.sum(self._sums.copy())
+        k, u, pot = s[0], s[1], s[2]
+        return {"time": self.time, "step": self.step_count, "dt": self.dt, "kinetic": k,
+                "strain": u, "potential": pot, "total": k + u + pot, "px": s[3], "py": s[4],
+                "pz": s[5], "mass": s[6]}
+
+    def _scheduled_snapshot(self):
+        o = self.case.output
+        if o.every_steps is not None:
+            return self.step_count % o.every_steps == 0
+        if o.every is not None:
+            return self.time >= self._next_snapshot_time - 1e-12 * o.every
+        return False
+
+    def _after_snapshot(self):
+        o = self.case.output
+        if o.every is not None:
+            while self._next_snapshot_time <= self.time + 1e-12 * o.every:
+                self._next_snapshot_time += o.every
+
+    # -- the step ----------------------------------------------------------------------------
+    def step(self):
+        """One time step in the fixed order of DESIGN.md §3 (stages the scene lacks are absent)."""
+        if self.prescribed is not None:
+            self.prescribed.apply(self.time)
+        if self.loads is not None:
+            self.loads.update(self.time)
+        bad = -1
+        if self.mpm is not None:
+            with self.timers.phase("mpm"):
+                bad = self.mpm.step(self.dt, self.time)
+        if self.prescribed is not None:
+            self.prescribed.apply(self.time + self.dt)
+        if self.dist.any(bad >= 0):
+            self._fail(bad)
+        self.time += self.dt
+        self.step_count += 1
+        self._update_dt()
+
+    def _fail(self, bad):
+        p = self.particles
+        gid, cause = -1, "failure on another rank"
+        if bad >= 0:
+            gid = int(p["gid"][bad])
+            x = p["x"][bad]
+            J = np.linalg.det(p["F"][bad])
+            if not np.all(np.isfinite(x)) or not np.isfinite(J):
+                cause = "NaN in position or deformation gradient"
+            elif not J > 0:
+                cause = f"det F = {J:.3g} <= 0 (inverted material)"
+            else:
+                cause = f"left the grid at x = {np.round(x, 6).tolist()}"
+        raise RunError(self.step_count + 1, gid, cause)
+
+    # -- the loop ------------------------------------------------------------------------------
+    def run(self, max_steps=None, progress_every=None, on_step=None):
+        """Advance to case.time.end (or max_steps); returns a summary dict."""
+        end = self.case.time.end
+        diag_every = self.case.output.diagnostics_every
+        self.write_snapshot()
+        self._after_snapshot() if self.writer else None
+        if self.diag:
+            self.diag.append(self.diagnostics())
+        t_start = time.perf_counter()
+        steps0 = self.step_count
+        warm = None
+        try:
+            while self.time < end - 1e-6 * self.dt:
+                if max_steps is not None and self.step_count - steps0 >= max_steps:
+                    break
+                if self.time + self.dt > end:
+                    self.dt = end - self.time
+                ts = time.perf_counter()
+                self.step()
+                if warm is None:  # the first step pays for JIT compilation (or cache loading)
+                    warm = time.perf_counter() - ts
+                if self.diag and self.step_count % diag_every == 0:
+                    self.diag.append(self.diagnostics())
+                if self.writer and self._scheduled_snapshot():
+                    self.write_snapshot()
+                    self._after_snapshot()
+                if on_step is not None:
+                    on_step(self)
+                if progress_every and self.dist.is_root and self.step_count % progress_every == 0:
+                    el = time.perf_counter() - t_start
+                    rate = self.particles.n_owned * (self.step_count - steps0) / max(el, 1e-9)
+                    log.info("t=%.6g step=%d dt=%.3g %.3g particle-steps/s", self.time,
+                             self.step_count, self.dt, rate)
+        except RunError:
+            self.write_snapshot()
+            self.close()
+            raise
+        if self.writer and self._last_snapshot_step != self.step_count:
+            self.write_snapshot()
+        if self.diag and self.step_count % diag_every != 0:
+            self.diag.append(self.diagnostics())
+        wall = time.perf_counter() - t_start
+        self.timers.add("jit_warmup", warm or 0.0)
+        self.timers.add("run", wall - (warm or 0.0))
+        n_steps = self.step_count - steps0
+        return {"steps": n_steps, "time": self.time, "wall": wall, "warmup": warm or 0.0,
+                "particles": int(self.dist.sum(self.particles.n_owned)),
+                "timers": self.timers.as_dict()}
+
+    def close(self):
+        if self.writer is not None:
+            self.writer.close()
+            self.writer = None
+        if self.diag is not None:
+            self.diag.close()
+            self.diag = None
