@@ -244,23 +244,46 @@ def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, m
                     if bad < 0:
                         bad = p
         if do_deformation:
-            L[0, 0] = L00 * inv_dx
-            L[0, 1] = L01 * inv_dx
-            L[0, 2] = L02 * inv_dx
-            L[1, 0] = L10 * inv_dx
-            L[1, 1] = L11 * inv_dx
-            L[1, 2] = L12 * inv_dx
-            L[2, 0] = L20 * inv_dx
-            L[2, 1] = L21 * inv_dx
-            L[2, 2] = L22 * inv_dx
-            Fp = F[p]
-            for a in range(3):
-                for b in range(3):
-                    Fn[a, b] = (Fp[a, b] + dt * (L[a, 0] * Fp[0, b] + L[a, 1] * Fp[1, b]
-                                                 + L[a, 2] * Fp[2, b]))
-            for a in range(3):
-                for b in range(3):
-                    Fp[a, b] = Fn[a, b]
+            L00 *= inv_dx
+            L01 *= inv_dx
+            L02 *= inv_dx
+            L10 *= inv_dx
+            L11 *= inv_dx
+            L12 *= inv_dx
+            L20 *= inv_dx
+            L21 *= inv_dx
+            L22 *= inv_dx
+            L[0, 0] = L00
+            L[0, 1] = L01
+            L[0, 2] = L02
+            L[1, 0] = L10
+            L[1, 1] = L11
+            L[1, 2] = L12
+            L[2, 0] = L20
+            L[2, 1] = L21
+            L[2, 2] = L22
+            # F <- (I + dt L) F, eq. 82, on scalars (no aliasing between small arrays); in
+            # 1D/2D the out-of-plane row and column of F stay those of the identity
+            for b in range(dim):
+                f0 = F[p, 0, b]
+                f1 = F[p, 1, b]
+                f2 = F[p, 2, b]
+                n0 = f0 + dt * (L00 * f0 + L01 * f1 + L02 * f2)
+                n1 = f1 + dt * (L10 * f0 + L11 * f1 + L12 * f2)
+                n2 = f2 + dt * (L20 * f0 + L21 * f1 + L22 * f2)
+                F[p, 0, b] = n0
+                Fn[0, b] = n0
+                if dim > 1:
+                    F[p, 1, b] = n1
+                    Fn[1, b] = n1
+                if dim > 2:
+                    F[p, 2, b] = n2
+                    Fn[2, b] = n2
+            if dim < 3:
+                for a in range(3):
+                    for b in range(dim, 3):
+                        Fn[a, b] = F[p, a, b]
+                        Fn[b, a] = F[p, b, a]
             J = (Fn[0, 0] * (Fn[1, 1] * Fn[2, 2] - Fn[1, 2] * Fn[2, 1])
                  - Fn[0, 1] * (Fn[1, 0] * Fn[2, 2] - Fn[1, 2] * Fn[2, 0])
                  + Fn[0, 2] * (Fn[1, 0] * Fn[2, 1] - Fn[1, 1] * Fn[2, 0]))
@@ -269,7 +292,12 @@ def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, m
                 bad = p
             mi = mat[p]
             compute_stress(mtypes[mi], Fn, L, dt, mstate[p], mparams[mi], sig)
-            for a in range(3):
-                for b in range(3):
-                    sigma[p, a, b] = sig[a, b] + (prestress[p, a, b] if has_pre else 0.0)
+            if has_pre:
+                for a in range(3):
+                    for b in range(3):
+                        sigma[p, a, b] = sig[a, b] + prestress[p, a, b]
+            else:
+                for a in range(3):
+                    for b in range(3):
+                        sigma[p, a, b] = sig[a, b]
     return bad

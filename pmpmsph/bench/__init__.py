@@ -1,0 +1,1 @@
+"""Benchmarks: throughput against peers, scaling, speed against error (`python -m pmpmsph.bench`)."""

@@ -1,0 +1,67 @@
+"""`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--no-peers] [--install-peers]`.
+
+Prints particle-steps per second for our solver and for the peers of ../shared/peers run in
+the same invocation (machines are shared and noisy: ratios taken together hold, absolute
+figures drift), and writes the figures to bench_results/throughput_mpm.json.
+"""
+import argparse
+import json
+import os
+import sys
+
+
+def main(argv=None):
+    from ..parallel.distributor import configure_numba_cache
+
+    configure_numba_cache()
+    ap = argparse.ArgumentParser(prog="python -m pmpmsph.bench")
+    sub = ap.add_subparsers(dest="command", required=True)
+    tp = sub.add_parser("throughput", help="particle-steps/s against the peers")
+    tp.add_argument("method", choices=["mpm"])
+    tp.add_argument("--n-grid", type=int, nargs="+", default=[128, 256])
+    tp.add_argument("--steps", type=int, default=400)
+    tp.add_argument("--repeat", type=int, default=3)
+    tp.add_argument("--no-peers", action="store_true")
+    tp.add_argument("--install-peers", action="store_true")
+    tp.add_argument("--out", default="bench_results")
+    args = ap.parse_args(argv)
+
+    from .peers import install_peers, run_peer
+    from .throughput import bench_mpm, bench_small
+
+    if args.install_peers:
+        install_peers()
+    results = {"ours": [], "peers": [], "small": None}
+    print(f"{'program':<28}{'n_grid':>7}{'particles':>11}{'M particle-steps/s':>20}")
+    for n_grid in args.n_grid:
+        r = bench_mpm(n_grid, args.steps, args.repeat)
+        results["ours"].append(r)
+        print(f"{'pmpmsph (USL, quadratic)':<28}{n_grid:>7}{r['particles']:>11}"
+              f"{r['rate'] / 1e6:>20.2f}", flush=True)
+        if args.no_peers:
+            continue
+        for peer in ("taichi_mlsmpm.py", "numba_minimal_mlsmpm.py"):
+            rate, note = run_peer(peer, [n_grid])
+            results["peers"].append({"peer": peer, "n_grid": n_grid, "rate": rate,
+                                     "note": note})
+            shown = f"{rate / 1e6:>20.2f}" if rate else f"  ({note})"
+            print(f"{peer:<28}{n_grid:>7}{'':>11}{shown}", flush=True)
+    small = bench_small()
+    results["small"] = small
+    print(f"scene 1 (10 particles): {small['steps_per_s']:.0f} steps/s")
+    if not args.no_peers:
+        print("\nratios (ours / peer, same invocation):")
+        for r in results["ours"]:
+            for p in results["peers"]:
+                if p["n_grid"] == r["n_grid"] and p["rate"]:
+                    print(f"  n_grid {r['n_grid']}: / {p['peer']}: {r['rate'] / p['rate']:.2f}")
+    os.makedirs(args.out, exist_ok=True)
+    path = os.path.join(args.out, "throughput_mpm.json")
+    with open(path, "w") as fh:
+        json.dump(results, fh, indent=1)
+    print(f"written {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,61 @@
+"""Throughput: particle-steps per second on one rank, against the peers in one invocation.
+
+mpm: the scene of ../shared/peers/taichi_mlsmpm.py — unit square, n_grid^2 cells, a 0.4 x 0.4
+block of (n_grid/2)^2 * 4 fluid particles falling at 1 m/s, quadratic B-spline, dt = 2e-4
+(128/n_grid), 20 warm-up steps then 400 timed ones. Our fluid is the Tait material with
+gamma = 1 and kappa = E = 400 (the peers' p = -E (J - 1) to first order) and walls that stop
+only inflow, like the peers'. We carry what a real solver carries (full F, Cauchy stress,
+material dispatch, boundary conditions), the peers only J and C.
+small: BENCHMARKS.md scene 1 (10 particles) in steps per second, for the per-step overhead.
+"""
+import time
+
+from ..scene_api import Scene
+
+
+def mpm_peer_scene(n_grid, shape="quadratic", transfer="usl"):
+    n_side = n_grid  # (n_grid/2)^2 * 4 particles = n_grid^2 on a 0.4 x 0.4 lattice
+    sc = Scene(2, grid=dict(origin=[0.0, 0.0], length=[1.0, 1.0], cells=[n_grid, n_grid]),
+               time=dict(end=1e9, dt=2e-4 * 128 / n_grid), gravity=[0.0, -9.8],
+               mpm=dict(shape=shape, transfer=transfer, flip=0.0))
+    sc.material("fluid", model="tait", rho=1.0, kappa=400.0, gamma=1.0)
+    sc.body(name="block", material="fluid", shape="box", min=[0.2, 0.2], max=[0.6, 0.6],
+            spacing=0.4 / n_side, velocity=[0.0, -1.0])
+    for face in ("x-", "x+", "y-", "y+"):
+        sc.boundary(face=face, type="friction", friction=0.0)
+    return sc
+
+
+def time_simulation(sim, steps, warmup=20, repeat=3):
+    """Best of `repeat` timed blocks of `steps` steps after `warmup` steps (JIT included)."""
+    t0 = time.perf_counter()
+    sim.run(max_steps=warmup)
+    warm = time.perf_counter() - t0
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        sim.run(max_steps=steps)
+        best = min(best, time.perf_counter() - t0)
+    return best, warm
+
+
+def bench_mpm(n_grid=128, steps=400, repeat=3, shape="quadratic"):
+    sim = mpm_peer_scene(n_grid, shape=shape).simulation()
+    n = sim.particles.n_owned
+    el, warm = time_simulation(sim, steps, repeat=repeat)
+    phases = sim.timers.as_dict()
+    return {"n_grid": n_grid, "particles": n, "steps": steps, "seconds": el,
+            "rate": n * steps / el, "warmup_s": warm, "phases": phases}
+
+
+def bench_small(steps=20000):
+    from ..config import load_case_file
+    from ..simulation import Simulation
+    import os
+
+    here = os.path.dirname(os.path.abspath(__file__))
+    case = load_case_file(os.path.join(here, "..", "..", "cases", "spring_1d.toml"))
+    sim = Simulation(case)
+    el, warm = time_simulation(sim, steps, warmup=100, repeat=1)
+    return {"particles": sim.particles.n_owned, "steps": steps, "seconds": el,
+            "steps_per_s": steps / el}
