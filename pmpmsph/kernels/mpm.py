@@ -14,35 +14,38 @@ from .shapes import axis_weights
 
 @njit
 def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv_dx, strides,
-        with_force, with_normals, gmass, gmom, gforce, gmgrad):
-    """Scatter mass, momentum and (if `with_force`) internal + external force (eq. 65).
+        gmass, gmom, gforce, gmgrad):
+    """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65).
 
     Internal force of node I: -sum_p vol_p sigma_p . grad N_I(x_p); external: sum_p N_I f_p.
-    `pfield[p]` is the velocity field a particle belongs to (0 unless multi-field contact);
-    with `with_normals` the mass gradients sum_p m_p grad N_I are accumulated for contact.
     Gravity is added on the grid (m_I g is exactly sum_p N_I m_p g).
-    `dim_tag`/`kind_tag` are the compile-time dimension and shape function (`static_tags`).
+    Optional inputs are None when a scene lacks them, which Numba resolves at compile time:
+    `fext` (particle forces), `lp` (GIMP half-widths; None for other shapes), `pfield` (the
+    velocity field of each particle for multi-field contact; None: field 0), `gmgrad` (mass
+    gradients sum_p m_p grad N_I for contact normals). `dim_tag`/`kind_tag` are the
+    compile-time dimension and shape function (`static_tags`).
     """
     dim = len(dim_tag)
     kind = len(kind_tag) - 1
-    w = np.zeros((3, 4))
-    d = np.zeros((3, 4))
     st = np.zeros(3, np.int64)
     st[:dim] = strides
     n = x.shape[0]
-    has_lp = lp.shape[0] == n and n > 0
-    has_fext = fext.shape[0] == n and n > 0
-    multi = pfield.shape[0] == n and n > 0
+    lp0 = lp1 = lp2 = 0.5
+    fe0 = fe1 = fe2 = 0.0
+    fld = 0
     for p in range(n):
-        xp = x[p]
-        lpp = lp[p] if has_lp else lp[0]
-        b0, n0 = axis_weights(kind, dim, 0, xp, origin, inv_dx, lpp[0], w[0], d[0])
-        b1, n1 = axis_weights(kind, dim, 1, xp, origin, inv_dx, lpp[min(1, dim - 1)], w[1], d[1])
-        b2, n2 = axis_weights(kind, dim, 2, xp, origin, inv_dx, lpp[min(2, dim - 1)], w[2], d[2])
+        if lp is not None:
+            lp0 = lp[p, 0]
+            lp1 = lp[p, min(1, dim - 1)]
+            lp2 = lp[p, min(2, dim - 1)]
+        if pfield is not None:
+            fld = pfield[p]
+        b0, n0, w0, d0 = axis_weights(kind, dim, 0, x[p], origin, inv_dx, lp0)
+        b1, n1, w1, d1 = axis_weights(kind, dim, 1, x[p], origin, inv_dx, lp1)
+        b2, n2, w2, d2 = axis_weights(kind, dim, 2, x[p], origin, inv_dx, lp2)
         base = b0 * st[0] + b1 * st[1] + b2 * st[2]
-        fld = pfield[p] if multi else 0
         m = mass[p]
-        vo = vol[p] * inv_dx  # dN = d w * inv_dx, folded in here
+        vo = vol[p] * inv_dx  # grad N = dw * inv_dx, folded in here
         mv0 = m * v[p, 0]
         mv1 = m * v[p, 1] if dim > 1 else 0.0
         mv2 = m * v[p, 2] if dim > 2 else 0.0
@@ -52,17 +55,17 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv
         s11 = vo * sigma[p, 1, 1]
         s12 = vo * sigma[p, 1, 2]
         s22 = vo * sigma[p, 2, 2]
-        fe0 = fext[p, 0] if has_fext else 0.0
-        fe1 = fext[p, 1] if has_fext and dim > 1 else 0.0
-        fe2 = fext[p, 2] if has_fext and dim > 2 else 0.0
+        if fext is not None:
+            fe0 = fext[p, 0]
+            if dim > 1:
+                fe1 = fext[p, 1]
+            if dim > 2:
+                fe2 = fext[p, 2]
         for i in range(n0):
             for j in range(n1):
-                wij = w[0, i] * w[1, j]
+                wij = w0[i] * w1[j]
                 for k in range(n2):
-                    N = wij * w[2, k]
-                    g0 = d[0, i] * w[1, j] * w[2, k]
-                    g1 = w[0, i] * d[1, j] * w[2, k]
-                    g2 = wij * d[2, k]
+                    N = wij * w2[k]
                     node = base + i * st[0] + j * st[1] + k * st[2]
                     gmass[fld, node] += N * m
                     gmom[fld, node, 0] += N * mv0
@@ -70,13 +73,17 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv
                         gmom[fld, node, 1] += N * mv1
                     if dim > 2:
                         gmom[fld, node, 2] += N * mv2
-                    if with_force:
+                    if gforce is not None or gmgrad is not None:
+                        g0 = d0[i] * w1[j] * w2[k]
+                        g1 = w0[i] * d1[j] * w2[k]
+                        g2 = wij * d2[k]
+                    if gforce is not None:
                         gforce[fld, node, 0] += N * fe0 - (s00 * g0 + s01 * g1 + s02 * g2)
                         if dim > 1:
                             gforce[fld, node, 1] += N * fe1 - (s01 * g0 + s11 * g1 + s12 * g2)
                         if dim > 2:
                             gforce[fld, node, 2] += N * fe2 - (s02 * g0 + s12 * g1 + s22 * g2)
-                    if with_normals:
+                    if gmgrad is not None:
                         gmgrad[fld, node, 0] += m * g0 * inv_dx
                         if dim > 1:
                             gmgrad[fld, node, 1] += m * g1 * inv_dx
@@ -162,8 +169,7 @@ def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, gvel, gdv):
 
 @njit
 def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, mparams, mstate,
-        prestress, gvel, gdv, origin, inv_dx, strides, dt, flip, do_kinematics,
-        do_deformation, lo, hi):
+        prestress, gvel, gdv, origin, inv_dx, strides, dt, flip, lo, hi):
     """Gather from the grid (eqs. 80-86) for every particle.
 
     Kinematics: v_p <- flip (v_p + sum N dv) + (1 - flip) sum N v_new (FLIP/PIC blend),
@@ -171,42 +177,44 @@ def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, m
     (eq. 82), vol = det F vol0 (eq. 85), sigma from the material (eq. 86) plus any pre-stress.
     L is evaluated at the position before this step's move. Returns the index of the first
     particle that left the box [lo, hi], became NaN or inverted (det F <= 0), or -1.
+    Passing `gdv = None` skips the kinematics, `F = None` the deformation (USF/MUSL passes);
+    `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`).
     """
     dim = len(dim_tag)
     kind = len(kind_tag) - 1
-    w = np.zeros((3, 4))
-    d = np.zeros((3, 4))
     st = np.zeros(3, np.int64)
     st[:dim] = strides
     L = np.zeros((3, 3))
     Fn = np.zeros((3, 3))
     sig = np.zeros((3, 3))
     n = x.shape[0]
-    has_lp = lp.shape[0] == n and n > 0
-    multi = pfield.shape[0] == n and n > 0
-    has_pre = prestress.shape[0] == n and n > 0
+    lp0 = lp1 = lp2 = 0.5
+    fld = 0
     bad = -1
     for p in range(n):
-        xp = x[p]
-        lpp = lp[p] if has_lp else lp[0]
-        b0, n0 = axis_weights(kind, dim, 0, xp, origin, inv_dx, lpp[0], w[0], d[0])
-        b1, n1 = axis_weights(kind, dim, 1, xp, origin, inv_dx, lpp[min(1, dim - 1)], w[1], d[1])
-        b2, n2 = axis_weights(kind, dim, 2, xp, origin, inv_dx, lpp[min(2, dim - 1)], w[2], d[2])
+        if lp is not None:
+            lp0 = lp[p, 0]
+            lp1 = lp[p, min(1, dim - 1)]
+            lp2 = lp[p, min(2, dim - 1)]
+        if pfield is not None:
+            fld = pfield[p]
+        b0, n0, w0, d0 = axis_weights(kind, dim, 0, x[p], origin, inv_dx, lp0)
+        b1, n1, w1, d1 = axis_weights(kind, dim, 1, x[p], origin, inv_dx, lp1)
+        b2, n2, w2, d2 = axis_weights(kind, dim, 2, x[p], origin, inv_dx, lp2)
         base = b0 * st[0] + b1 * st[1] + b2 * st[2]
-        fld = pfield[p] if multi else 0
         vp0 = vp1 = vp2 = 0.0  # sum N v_new
         dv0 = dv1 = dv2 = 0.0  # sum N dv
         L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
         for i in range(n0):
             for j in range(n1):
-                wij = w[0, i] * w[1, j]
+                wij = w0[i] * w1[j]
                 for k in range(n2):
-                    N = wij * w[2, k]
+                    N = wij * w2[k]
                     node = base + i * st[0] + j * st[1] + k * st[2]
                     u0 = gvel[fld, node, 0]
                     u1 = gvel[fld, node, 1] if dim > 1 else 0.0
                     u2 = gvel[fld, node, 2] if dim > 2 else 0.0
-                    if do_kinematics:
+                    if gdv is not None:
                         vp0 += N * u0
                         dv0 += N * gdv[fld, node, 0]
                         if dim > 1:
@@ -215,22 +223,22 @@ def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, m
                         if dim > 2:
                             vp2 += N * u2
                             dv2 += N * gdv[fld, node, 2]
-                    if do_deformation:
-                        g0 = d[0, i] * w[1, j] * w[2, k]
+                    if F is not None:
+                        g0 = d0[i] * w1[j] * w2[k]
                         L00 += u0 * g0
                         if dim > 1:
-                            g1 = w[0, i] * d[1, j] * w[2, k]
+                            g1 = w0[i] * d1[j] * w2[k]
                             L01 += u0 * g1
                             L10 += u1 * g0
                             L11 += u1 * g1
                         if dim > 2:
-                            g2 = wij * d[2, k]
+                            g2 = wij * d2[k]
                             L02 += u0 * g2
                             L12 += u1 * g2
                             L20 += u2 * g0
                             L21 += u2 * g1
                             L22 += u2 * g2
-        if do_kinematics:
+        if gdv is not None:
             v[p, 0] = flip * (v[p, 0] + dv0) + (1.0 - flip) * vp0
             x[p, 0] += dt * vp0
             if dim > 1:
@@ -243,7 +251,7 @@ def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, m
                 if not (x[p, a] >= lo[a] and x[p, a] <= hi[a]):
                     if bad < 0:
                         bad = p
-        if do_deformation:
+        if F is not None:
             L00 *= inv_dx
             L01 *= inv_dx
             L02 *= inv_dx
@@ -292,7 +300,7 @@ def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, m
                 bad = p
             mi = mat[p]
             compute_stress(mtypes[mi], Fn, L, dt, mstate[p], mparams[mi], sig)
-            if has_pre:
+            if prestress is not None:
                 for a in range(3):
                     for b in range(3):
                         sigma[p, a, b] = sig[a, b] + prestress[p, a, b]

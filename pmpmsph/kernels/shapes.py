@@ -31,76 +31,76 @@ def stencil_width(kind):
 
 
 @njit(inline="always")
-def weights_1d(kind, X, lp, w, dw):
-    """Weights w[k] and derivatives dw[k] (per cell unit) of nodes base+k; returns base."""
-    if kind == LINEAR:
-        base = math.floor(X)
-        f = X - base
-        w[0] = 1.0 - f
-        w[1] = f
-        dw[0] = -1.0
-        dw[1] = 1.0
-    elif kind == QUADRATIC:
-        base = math.floor(X - 0.5)
-        f = X - base  # in [0.5, 1.5)
-        w[0] = 0.5 * (1.5 - f) ** 2
-        w[1] = 0.75 - (f - 1.0) ** 2
-        w[2] = 0.5 * (f - 0.5) ** 2
-        dw[0] = f - 1.5
-        dw[1] = -2.0 * (f - 1.0)
-        dw[2] = f - 0.5
-    elif kind == CUBIC:
-        base = math.floor(X) - 1
-        f = X - base  # in [1, 2)
-        for k in range(4):
-            r = f - k
-            a = abs(r)
-            s = 1.0 if r >= 0.0 else -1.0
-            if a < 1.0:
-                w[k] = 2.0 / 3.0 - r * r + 0.5 * a * a * a
-                dw[k] = s * (-2.0 * a + 1.5 * a * a)
-            elif a < 2.0:
-                t = 2.0 - a
-                w[k] = t * t * t / 6.0
-                dw[k] = -s * 0.5 * t * t
-            else:
-                w[k] = 0.0
-                dw[k] = 0.0
-    else:  # GIMP, uniform particle half-width lp (cell units, <= 0.5)
-        base = math.floor(X - 0.5)
-        for k in range(3):
-            r = X - (base + k)
-            a = abs(r)
-            s = 1.0 if r >= 0.0 else -1.0
-            if a < lp:
-                w[k] = 1.0 - (r * r + lp * lp) / (2.0 * lp)
-                dw[k] = -r / lp
-            elif a < 1.0 - lp:
-                w[k] = 1.0 - a
-                dw[k] = -s
-            elif a < 1.0 + lp:
-                t = 1.0 + lp - a
-                w[k] = t * t / (4.0 * lp)
-                dw[k] = -s * t / (2.0 * lp)
-            else:
-                w[k] = 0.0
-                dw[k] = 0.0
-    return base
+def _cubic(r):
+    """Cubic B-spline and its derivative at signed distance r (cell units)."""
+    a = abs(r)
+    s = 1.0 if r >= 0.0 else -1.0
+    if a < 1.0:
+        return 2.0 / 3.0 - r * r + 0.5 * a * a * a, s * (-2.0 * a + 1.5 * a * a)
+    if a < 2.0:
+        t = 2.0 - a
+        return t * t * t / 6.0, -s * 0.5 * t * t
+    return 0.0, 0.0
 
 
 @njit(inline="always")
-def axis_weights(kind, dim, a, xp, origin, inv_dx, lp, w, dw):
-    """Weights along axis `a` of particle position `xp`; axes beyond `dim` get one unit weight.
+def _gimp(r, lp):
+    """Uniform GIMP weight and derivative at signed distance r for half-width lp <= 1/2."""
+    a = abs(r)
+    s = 1.0 if r >= 0.0 else -1.0
+    if a < lp:
+        return 1.0 - (r * r + lp * lp) / (2.0 * lp), -r / lp
+    if a < 1.0 - lp:
+        return 1.0 - a, -s
+    if a < 1.0 + lp:
+        t = 1.0 + lp - a
+        return t * t / (4.0 * lp), -s * t / (2.0 * lp)
+    return 0.0, 0.0
 
-    Returns (base node index along the axis, number of nodes). Letting the unused axes have a
-    single node of weight 1 and derivative 0 lets one triple loop serve 1D, 2D and 3D.
+
+@njit(inline="always")
+def weights_1d(kind, X, lp):
+    """(base, w, dw): weights w[k] and derivatives dw[k] (per cell unit) of nodes base + k.
+
+    w and dw are 4-tuples (unused entries 0) so that they live in registers, not memory.
+    """
+    if kind == LINEAR:
+        base = math.floor(X)
+        f = X - base
+        return base, (1.0 - f, f, 0.0, 0.0), (-1.0, 1.0, 0.0, 0.0)
+    if kind == QUADRATIC:
+        base = math.floor(X - 0.5)
+        f = X - base  # in [0.5, 1.5)
+        return (base, (0.5 * (1.5 - f) ** 2, 0.75 - (f - 1.0) ** 2, 0.5 * (f - 0.5) ** 2, 0.0),
+                (f - 1.5, -2.0 * (f - 1.0), f - 0.5, 0.0))
+    if kind == CUBIC:
+        base = math.floor(X) - 1
+        f = X - base  # in [1, 2)
+        w0, d0 = _cubic(f)
+        w1, d1 = _cubic(f - 1.0)
+        w2, d2 = _cubic(f - 2.0)
+        w3, d3 = _cubic(f - 3.0)
+        return base, (w0, w1, w2, w3), (d0, d1, d2, d3)
+    base = math.floor(X - 0.5)  # GIMP
+    f = X - base
+    w0, d0 = _gimp(f, lp)
+    w1, d1 = _gimp(f - 1.0, lp)
+    w2, d2 = _gimp(f - 2.0, lp)
+    return base, (w0, w1, w2, 0.0), (d0, d1, d2, 0.0)
+
+
+@njit(inline="always")
+def axis_weights(kind, dim, a, xp, origin, inv_dx, lp):
+    """(base, count, w, dw) along axis `a`; axes beyond `dim` get one node of weight 1.
+
+    Letting the unused axes have a single node of weight 1 and derivative 0 lets one triple
+    loop serve 1D, 2D and 3D.
     """
     if a < dim:
         X = (xp[a] - origin[a]) * inv_dx + 2.0  # + GRID_PAD
-        return weights_1d(kind, X, lp, w, dw), stencil_width(kind)
-    w[0] = 1.0
-    dw[0] = 0.0
-    return 0, 1
+        base, w, dw = weights_1d(kind, X, lp)
+        return base, stencil_width(kind), w, dw
+    return 0, 1, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0)
 
 
 def static_tags(dim, kind):

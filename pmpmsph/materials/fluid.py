@@ -21,10 +21,20 @@ from .tensor import det_minus_one, store_sym
 STATE_SIZE = 0
 
 
-@njit
+@njit(inline="always")
 def tait_pressure(jm1, kappa, gamma):
-    """p = kappa [(1/J)^gamma - 1] (seed 003, eq. 50) from jm1 = J - 1, written as
-    kappa expm1(-gamma log1p(J - 1)) for accuracy near J = 1."""
+    """p = kappa [(1/J)^gamma - 1] (seed 003, eq. 50) from jm1 = J - 1.
+
+    The usual exponents take a fast exact path (this runs per particle per step and a
+    log/exp pair costs as much as the rest of the G2P loop): gamma = 1 as -kappa jm1/J
+    (no cancellation), gamma = 7 by multiplication (absolute error ~1e-15 kappa); any other
+    gamma as kappa expm1(-gamma log1p(jm1)), accurate near J = 1."""
+    if gamma == 1.0:
+        return -kappa * jm1 / (1.0 + jm1)
+    if gamma == 7.0:
+        r = 1.0 / (1.0 + jm1)
+        r2 = r * r
+        return kappa * (r2 * r2 * r2 * r - 1.0)
     return kappa * np.expm1(-gamma * np.log1p(jm1))
 
 

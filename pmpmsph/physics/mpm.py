@@ -38,10 +38,6 @@ class MPMStage:
         self.gravity[: self.dim] = case.gravity
         self.mtypes, self.mparams = materials
         self.halo_exchange = halo_exchange
-        self._empty_i = np.zeros(0, np.int32)
-        self._empty_v = np.zeros((0, self.dim))
-        self._empty_t = np.zeros((0, 3, 3))
-        self._empty_s = np.zeros((1, 0))
 
     @staticmethod
     def fields(case):
@@ -54,23 +50,24 @@ class MPMStage:
         return out
 
     # -- the loops ------------------------------------------------------------------------------
-    def _arrays(self):
+    def _optional(self):
+        """The optional per-particle inputs of the kernels: an array, or None if absent."""
         p = self.p
         n = p.n_owned
-        lp = p["lp"][:n] if "lp" in p else np.full((1, self.dim), 0.5)
-        fext = p["fext"][:n] if "fext" in p else self._empty_v
-        pfield = p["body"][:n] if self.multi else self._empty_i
-        pre = p["prestress"][:n] if "prestress" in p else self._empty_t
-        mstate = p["mstate"][:n] if "mstate" in p else np.zeros((n, 0))
+        lp = p["lp"][:n] if "lp" in p else None
+        fext = p["fext"][:n] if "fext" in p else None
+        pfield = p["body"][:n] if self.multi else None
+        pre = p["prestress"][:n] if "prestress" in p else None
+        mstate = p["mstate"][:n] if "mstate" in p else np.empty((n, 0))
         return n, lp, fext, pfield, pre, mstate
 
     def _p2g(self, with_force):
         g, p = self.grid, self.p
-        n, lp, fext, pfield, _, _ = self._arrays()
+        n, lp, fext, pfield, _, _ = self._optional()
         g.reset()
-        p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n],
-            p["sigma"][:n], fext, lp, pfield, g.origin, g.inv_dx, g.strides, with_force,
-            self.multi, g.mass, g.mom, g.force, g.mgrad)
+        p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n], p["sigma"][:n],
+            fext, lp, pfield, g.origin, g.inv_dx, g.strides, g.mass, g.mom,
+            g.force if with_force else None, g.mgrad if self.multi else None)
         # GridHalo.reduce goes here on more than one rank (MPI issue)
 
     def _solve(self, dt, time, with_force):
@@ -85,11 +82,12 @@ class MPMStage:
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p
-        n, lp, _, pfield, pre, mstate = self._arrays()
-        return g2p(*self.tags, p["x"][:n], p["v"][:n], p["F"][:n], p["sigma"][:n],
-                   p["vol"][:n], p["vol0"][:n], lp, pfield, p["mat"][:n], self.mtypes,
-                   self.mparams, mstate, pre, g.vel, g.dv, g.origin, g.inv_dx, g.strides, dt,
-                   self.flip, kinematics, deformation, g.lo, g.hi)
+        n, lp, _, pfield, pre, mstate = self._optional()
+        return g2p(*self.tags, p["x"][:n], p["v"][:n], p["F"][:n] if deformation else None,
+                   p["sigma"][:n], p["vol"][:n], p["vol0"][:n], lp, pfield, p["mat"][:n],
+                   self.mtypes, self.mparams, mstate, pre, g.vel,
+                   g.dv if kinematics else None, g.origin, g.inv_dx, g.strides, dt, self.flip,
+                   g.lo, g.hi)
 
     def step(self, dt, time):
         """Advance owned MPM particles by dt; returns the index of a failed particle or -1."""

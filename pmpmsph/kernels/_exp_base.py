@@ -1,0 +1,315 @@
+"""The three MPM loops (Taichi mpm88 style): P2G, grid update, G2P.
+
+Thesis (seed 003) eqs. 65 (P2G of mass, momentum, force), 75-79 (lumped-mass grid solve with
+damping f_d = alpha_d m v, eq. 76), 80-86 (G2P: velocity, position, F = (I + dt L) F, volume,
+stress). Grid arrays are flat over nodes with a leading velocity-field axis: field 0 only for
+single-velocity-field MPM, one field per body for multi-field contact.
+"""
+import numpy as np
+
+from ..jit import njit
+from ..materials.dispatch import compute_stress
+from .shapes import axis_weights
+
+
+@njit
+def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv_dx, strides,
+        gmass, gmom, gforce, gmgrad):
+    """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65).
+
+    Internal force of node I: -sum_p vol_p sigma_p . grad N_I(x_p); external: sum_p N_I f_p.
+    Gravity is added on the grid (m_I g is exactly sum_p N_I m_p g).
+    Optional inputs are None when a scene lacks them, which Numba resolves at compile time:
+    `fext` (particle forces), `lp` (GIMP half-widths; None for other shapes), `pfield` (the
+    velocity field of each particle for multi-field contact; None: field 0), `gmgrad` (mass
+    gradients sum_p m_p grad N_I for contact normals). `dim_tag`/`kind_tag` are the
+    compile-time dimension and shape function (`static_tags`).
+    """
+    dim = len(dim_tag)
+    kind = len(kind_tag) - 1
+    w = np.zeros((3, 4))
+    d = np.zeros((3, 4))
+    st = np.zeros(3, np.int64)
+    st[:dim] = strides
+    n = x.shape[0]
+    lp0 = lp1 = lp2 = 0.5
+    fe0 = fe1 = fe2 = 0.0
+    fld = 0
+    for p in range(n):
+        if lp is not None:
+            lp0 = lp[p, 0]
+            lp1 = lp[p, min(1, dim - 1)]
+            lp2 = lp[p, min(2, dim - 1)]
+        if pfield is not None:
+            fld = pfield[p]
+        b0, n0 = axis_weights(kind, dim, 0, x[p], origin, inv_dx, lp0, w[0], d[0])
+        b1, n1 = axis_weights(kind, dim, 1, x[p], origin, inv_dx, lp1, w[1], d[1])
+        b2, n2 = axis_weights(kind, dim, 2, x[p], origin, inv_dx, lp2, w[2], d[2])
+        base = b0 * st[0] + b1 * st[1] + b2 * st[2]
+        m = mass[p]
+        vo = vol[p] * inv_dx  # grad N = dw * inv_dx, folded in here
+        mv0 = m * v[p, 0]
+        mv1 = m * v[p, 1] if dim > 1 else 0.0
+        mv2 = m * v[p, 2] if dim > 2 else 0.0
+        s00 = vo * sigma[p, 0, 0]
+        s01 = vo * sigma[p, 0, 1]
+        s02 = vo * sigma[p, 0, 2]
+        s11 = vo * sigma[p, 1, 1]
+        s12 = vo * sigma[p, 1, 2]
+        s22 = vo * sigma[p, 2, 2]
+        if fext is not None:
+            fe0 = fext[p, 0]
+            if dim > 1:
+                fe1 = fext[p, 1]
+            if dim > 2:
+                fe2 = fext[p, 2]
+        for i in range(n0):
+            for j in range(n1):
+                wij = w[0, i] * w[1, j]
+                for k in range(n2):
+                    N = wij * w[2, k]
+                    node = base + i * st[0] + j * st[1] + k * st[2]
+                    gmass[fld, node] += N * m
+                    gmom[fld, node, 0] += N * mv0
+                    if dim > 1:
+                        gmom[fld, node, 1] += N * mv1
+                    if dim > 2:
+                        gmom[fld, node, 2] += N * mv2
+                    if gforce is not None or gmgrad is not None:
+                        g0 = d[0, i] * w[1, j] * w[2, k]
+                        g1 = w[0, i] * d[1, j] * w[2, k]
+                        g2 = wij * d[2, k]
+                    if gforce is not None:
+                        gforce[fld, node, 0] += N * fe0 - (s00 * g0 + s01 * g1 + s02 * g2)
+                        if dim > 1:
+                            gforce[fld, node, 1] += N * fe1 - (s01 * g0 + s11 * g1 + s12 * g2)
+                        if dim > 2:
+                            gforce[fld, node, 2] += N * fe2 - (s02 * g0 + s12 * g1 + s22 * g2)
+                    if gmgrad is not None:
+                        gmgrad[fld, node, 0] += m * g0 * inv_dx
+                        if dim > 1:
+                            gmgrad[fld, node, 1] += m * g1 * inv_dx
+                        if dim > 2:
+                            gmgrad[fld, node, 2] += m * g2 * inv_dx
+
+
+@njit
+def grid_velocity(dim, gmass, gmom, gforce, gvel, gdv, dt, gravity, damping, mass_cutoff,
+                  with_force):
+    """Nodal velocity v = p/m and, with forces, the update of eqs. 77-79 (lumped mass):
+
+    a = (f - alpha_d m v)/m + g,  v_new = v + a dt.  `gvel` receives v_new (or v), `gdv` the
+    change v_new - v (the FLIP increment). Nodes lighter than `mass_cutoff` are left at rest.
+    """
+    nf, nn = gmass.shape
+    for fld in range(nf):
+        for i in range(nn):
+            m = gmass[fld, i]
+            if m < mass_cutoff:
+                for a in range(dim):
+                    gvel[fld, i, a] = 0.0
+                    gdv[fld, i, a] = 0.0
+                continue
+            inv_m = 1.0 / m
+            for a in range(dim):
+                vi = gmom[fld, i, a] * inv_m
+                if with_force:
+                    acc = gforce[fld, i, a] * inv_m + gravity[a] - damping * vi
+                    gvel[fld, i, a] = vi + acc * dt
+                    gdv[fld, i, a] = acc * dt
+                else:
+                    gvel[fld, i, a] = vi
+                    gdv[fld, i, a] = 0.0
+
+
+FIXED, SLIP, FRICTION = 0, 1, 2
+BC_CODES = {"fixed": FIXED, "slip": SLIP, "friction": FRICTION}
+
+
+@njit
+def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, gvel, gdv):
+    """Velocity boundary conditions on grid nodes, for every velocity field.
+
+    fixed: v = 0.  slip: v.n = 0 (thesis eq. 90, non-penetration).  friction: Coulomb wall,
+    one-sided: only an approaching normal velocity (v.n > 0, n outward) is removed, and the
+    tangential velocity is reduced by mu times it. The FLIP increment gdv is changed by the
+    same amount as the velocity, so constrained components carry no spurious acceleration.
+    """
+    nf = gvel.shape[0]
+    for j in range(bc_node.shape[0]):
+        i = bc_node[j]
+        kind = bc_kind[j]
+        for fld in range(nf):
+            if kind == FIXED:
+                for a in range(dim):
+                    gdv[fld, i, a] -= gvel[fld, i, a]
+                    gvel[fld, i, a] = 0.0
+                continue
+            vn = 0.0
+            for a in range(dim):
+                vn += gvel[fld, i, a] * bc_normal[j, a]
+            if kind == SLIP:
+                for a in range(dim):
+                    d = vn * bc_normal[j, a]
+                    gvel[fld, i, a] -= d
+                    gdv[fld, i, a] -= d
+            elif vn > 0.0:
+                vt2 = 0.0
+                for a in range(dim):
+                    t = gvel[fld, i, a] - vn * bc_normal[j, a]
+                    vt2 += t * t
+                vt = np.sqrt(vt2)
+                scale = 0.0
+                if vt > 0.0:
+                    scale = max(0.0, 1.0 - bc_mu[j] * vn / vt)
+                for a in range(dim):
+                    t = gvel[fld, i, a] - vn * bc_normal[j, a]
+                    new = scale * t
+                    gdv[fld, i, a] += new - gvel[fld, i, a]
+                    gvel[fld, i, a] = new
+
+
+@njit
+def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, mparams, mstate,
+        prestress, gvel, gdv, origin, inv_dx, strides, dt, flip, lo, hi):
+    """Gather from the grid (eqs. 80-86) for every particle.
+
+    Kinematics: v_p <- flip (v_p + sum N dv) + (1 - flip) sum N v_new (FLIP/PIC blend),
+    x_p <- x_p + dt sum N v_new. Deformation: L = sum v_new (x) grad N, F <- (I + dt L) F
+    (eq. 82), vol = det F vol0 (eq. 85), sigma from the material (eq. 86) plus any pre-stress.
+    L is evaluated at the position before this step's move. Returns the index of the first
+    particle that left the box [lo, hi], became NaN or inverted (det F <= 0), or -1.
+    Passing `gdv = None` skips the kinematics, `F = None` the deformation (USF/MUSL passes);
+    `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`).
+    """
+    dim = len(dim_tag)
+    kind = len(kind_tag) - 1
+    w = np.zeros((3, 4))
+    d = np.zeros((3, 4))
+    st = np.zeros(3, np.int64)
+    st[:dim] = strides
+    L = np.zeros((3, 3))
+    Fn = np.zeros((3, 3))
+    sig = np.zeros((3, 3))
+    n = x.shape[0]
+    lp0 = lp1 = lp2 = 0.5
+    fld = 0
+    bad = -1
+    for p in range(n):
+        if lp is not None:
+            lp0 = lp[p, 0]
+            lp1 = lp[p, min(1, dim - 1)]
+            lp2 = lp[p, min(2, dim - 1)]
+        if pfield is not None:
+            fld = pfield[p]
+        b0, n0 = axis_weights(kind, dim, 0, x[p], origin, inv_dx, lp0, w[0], d[0])
+        b1, n1 = axis_weights(kind, dim, 1, x[p], origin, inv_dx, lp1, w[1], d[1])
+        b2, n2 = axis_weights(kind, dim, 2, x[p], origin, inv_dx, lp2, w[2], d[2])
+        base = b0 * st[0] + b1 * st[1] + b2 * st[2]
+        vp0 = vp1 = vp2 = 0.0  # sum N v_new
+        dv0 = dv1 = dv2 = 0.0  # sum N dv
+        L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
+        for i in range(n0):
+            for j in range(n1):
+                wij = w[0, i] * w[1, j]
+                for k in range(n2):
+                    N = wij * w[2, k]
+                    node = base + i * st[0] + j * st[1] + k * st[2]
+                    u0 = gvel[fld, node, 0]
+                    u1 = gvel[fld, node, 1] if dim > 1 else 0.0
+                    u2 = gvel[fld, node, 2] if dim > 2 else 0.0
+                    if gdv is not None:
+                        vp0 += N * u0
+                        dv0 += N * gdv[fld, node, 0]
+                        if dim > 1:
+                            vp1 += N * u1
+                            dv1 += N * gdv[fld, node, 1]
+                        if dim > 2:
+                            vp2 += N * u2
+                            dv2 += N * gdv[fld, node, 2]
+                    if F is not None:
+                        g0 = d[0, i] * w[1, j] * w[2, k]
+                        L00 += u0 * g0
+                        if dim > 1:
+                            g1 = w[0, i] * d[1, j] * w[2, k]
+                            L01 += u0 * g1
+                            L10 += u1 * g0
+                            L11 += u1 * g1
+                        if dim > 2:
+                            g2 = wij * d[2, k]
+                            L02 += u0 * g2
+                            L12 += u1 * g2
+                            L20 += u2 * g0
+                            L21 += u2 * g1
+                            L22 += u2 * g2
+        if gdv is not None:
+            v[p, 0] = flip * (v[p, 0] + dv0) + (1.0 - flip) * vp0
+            x[p, 0] += dt * vp0
+            if dim > 1:
+                v[p, 1] = flip * (v[p, 1] + dv1) + (1.0 - flip) * vp1
+                x[p, 1] += dt * vp1
+            if dim > 2:
+                v[p, 2] = flip * (v[p, 2] + dv2) + (1.0 - flip) * vp2
+                x[p, 2] += dt * vp2
+            for a in range(dim):
+                if not (x[p, a] >= lo[a] and x[p, a] <= hi[a]):
+                    if bad < 0:
+                        bad = p
+        if F is not None:
+            L00 *= inv_dx
+            L01 *= inv_dx
+            L02 *= inv_dx
+            L10 *= inv_dx
+            L11 *= inv_dx
+            L12 *= inv_dx
+            L20 *= inv_dx
+            L21 *= inv_dx
+            L22 *= inv_dx
+            L[0, 0] = L00
+            L[0, 1] = L01
+            L[0, 2] = L02
+            L[1, 0] = L10
+            L[1, 1] = L11
+            L[1, 2] = L12
+            L[2, 0] = L20
+            L[2, 1] = L21
+            L[2, 2] = L22
+            # F <- (I + dt L) F, eq. 82, on scalars (no aliasing between small arrays); in
+            # 1D/2D the out-of-plane row and column of F stay those of the identity
+            for b in range(dim):
+                f0 = F[p, 0, b]
+                f1 = F[p, 1, b]
+                f2 = F[p, 2, b]
+                n0 = f0 + dt * (L00 * f0 + L01 * f1 + L02 * f2)
+                n1 = f1 + dt * (L10 * f0 + L11 * f1 + L12 * f2)
+                n2 = f2 + dt * (L20 * f0 + L21 * f1 + L22 * f2)
+                F[p, 0, b] = n0
+                Fn[0, b] = n0
+                if dim > 1:
+                    F[p, 1, b] = n1
+                    Fn[1, b] = n1
+                if dim > 2:
+                    F[p, 2, b] = n2
+                    Fn[2, b] = n2
+            if dim < 3:
+                for a in range(3):
+                    for b in range(dim, 3):
+                        Fn[a, b] = F[p, a, b]
+                        Fn[b, a] = F[p, b, a]
+            J = (Fn[0, 0] * (Fn[1, 1] * Fn[2, 2] - Fn[1, 2] * Fn[2, 1])
+                 - Fn[0, 1] * (Fn[1, 0] * Fn[2, 2] - Fn[1, 2] * Fn[2, 0])
+                 + Fn[0, 2] * (Fn[1, 0] * Fn[2, 1] - Fn[1, 1] * Fn[2, 0]))
+            vol[p] = J * vol0[p]
+            if not (J > 0.0) and bad < 0:
+                bad = p
+            mi = mat[p]
+            compute_stress(mtypes[mi], Fn, L, dt, mstate[p], mparams[mi], sig)
+            if prestress is not None:
+                for a in range(3):
+                    for b in range(3):
+                        sigma[p, a, b] = sig[a, b] + prestress[p, a, b]
+            else:
+                for a in range(3):
+                    for b in range(3):
+                        sigma[p, a, b] = sig[a, b]
+    return bad
