@@ -14,7 +14,7 @@ from ..jit import njit
 
 
 @njit
-def multi_field_contact(dim, gmass, gmgrad, gvel, gdv, mu, mass_cutoff):
+def multi_field_contact(dim, gmass, gmgrad, gmx, gvel, gdv, mu, mass_cutoff, gap):
     nf, nn = gmass.shape
     nb = np.zeros(3)
     vcm = np.zeros(3)
@@ -49,9 +49,9 @@ def multi_field_contact(dim, gmass, gmgrad, gvel, gdv, mu, mass_cutoff):
             for a in range(dim):
                 if count == 2:
                     other = second if f == first else first
-                    nb[a] = -gmgrad[f, i, a] + gmgrad[other, i, a]
+                    nb[a] = gmgrad[f, i, a] - gmgrad[other, i, a]
                 else:
-                    nb[a] = -gmgrad[f, i, a]
+                    nb[a] = gmgrad[f, i, a]
                 norm2 += nb[a] * nb[a]
             if norm2 <= 0.0:
                 continue
@@ -62,6 +62,13 @@ def multi_field_contact(dim, gmass, gmgrad, gvel, gdv, mu, mass_cutoff):
                 dvn += (gvel[f, i, a] - vcm[a]) * nb[a]
             if dvn <= 0.0:
                 continue
+            if count == 2:
+                other = second if f == first else first
+                sep = 0.0
+                for a in range(dim):
+                    sep += (gmx[other, i, a] / gmass[other, i] - gmx[f, i, a] / gmass[f, i]) * nb[a]
+                if sep > gap:
+                    continue
             # tangential relative velocity after removing the normal part
             vt2 = 0.0
             for a in range(dim):
@@ -76,3 +83,15 @@ def multi_field_contact(dim, gmass, gmgrad, gvel, gdv, mu, mass_cutoff):
                 corr = -dvn * nb[a] - slip * t
                 gvel[f, i, a] += corr
                 gdv[f, i, a] += corr
+
+
+def touching_separation(weight, dx, support):
+    """Separation of the two nodal centres of mass when two uniform half-spaces touch at a node.
+
+    `weight(r)` is the 1-D shape function of the node at distance r (cell units) and `support`
+    its half-width; each side's centre is the N-weighted mean of |r| over that side.
+    """
+    r = np.linspace(0.0, support, 4001)
+    w = np.array([weight(ri) for ri in r])
+    mean = np.trapezoid(r * w, r) / np.trapezoid(w, r)
+    return 2.0 * mean * dx

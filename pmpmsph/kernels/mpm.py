@@ -14,7 +14,7 @@ from .shapes import axis_weights
 
 @njit
 def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv_dx, strides,
-        gmass, gmom, gforce, gmgrad):
+        gmass, gmom, gforce, gmgrad, gmx):
     """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65).
 
     Internal force of node I: -sum_p vol_p sigma_p . grad N_I(x_p); external: sum_p N_I f_p.
@@ -22,7 +22,8 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv
     Optional inputs are None when a scene lacks them, which Numba resolves at compile time:
     `fext` (particle forces), `lp` (GIMP half-widths; None for other shapes), `pfield` (the
     velocity field of each particle for multi-field contact; None: field 0), `gmgrad` (mass
-    gradients sum_p m_p grad N_I for contact normals). `dim_tag`/`kind_tag` are the
+    gradients sum_p m_p grad N_I for contact normals), `gmx` (mass-weighted positions
+    sum_p N_I m_p x_p, for the contact gap). `dim_tag`/`kind_tag` are the
     compile-time dimension and shape function (`static_tags`).
     """
     dim = len(dim_tag)
@@ -89,6 +90,9 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv
                             gmgrad[fld, node, 1] += m * g1 * inv_dx
                         if dim > 2:
                             gmgrad[fld, node, 2] += m * g2 * inv_dx
+                    if gmx is not None:
+                        for a in range(dim):
+                            gmx[fld, node, a] += N * m * x[p, a]
 
 
 @njit

@@ -35,6 +35,7 @@ class Grid:
         self.vel = np.zeros((nf, nn, d))
         self.dv = np.zeros((nf, nn, d))
         self.mgrad = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
+        self.mx = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
         #: the domain and the band around it in which particles may be (one cell outside)
         self.lo = self.origin - self.dx
         self.hi = np.array(spec.upper) + self.dx
@@ -45,6 +46,7 @@ class Grid:
         self.force.fill(0.0)
         if self.mgrad.shape[1]:
             self.mgrad.fill(0.0)
+            self.mx.fill(0.0)
 
     def node_coords(self):
         """Physical coordinates of all nodes, (n_nodes, dim)."""

@@ -9,7 +9,7 @@ Multi-field contact (Bardenhagen et al. 2001) runs after every grid solve when e
 """
 import numpy as np
 
-from ..kernels.contact import multi_field_contact
+from ..kernels.contact import multi_field_contact, touching_separation
 from ..kernels.mpm import g2p, grid_velocity, p2g
 from ..kernels.shapes import SHAPE_CODES, static_tags
 from ..particles import FieldSpec
@@ -33,11 +33,24 @@ class MPMStage:
         self.friction = spec.friction
         nfields = len(case.bodies) if self.multi else 1
         self.grid = Grid(case.grid, nfields=nfields, with_normals=self.multi)
+        self.contact_gap = self._contact_gap() if self.multi else 0.0
         self.bcs = GridBoundaries(case.boundaries, self.grid)
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
         self.mtypes, self.mparams = materials
         self.halo_exchange = halo_exchange
+
+    def _contact_gap(self):
+        """Displacement-check threshold of multi-field contact for this shape function."""
+        from ..kernels.shapes import weights_1d
+
+        def weight(r):  # weight of the node at 0 seen from a particle at distance r
+            base, w, _ = weights_1d(self.kind, 10.0 + r, 0.25)
+            k = 10 - base
+            return w[k] if 0 <= k < 4 else 0.0
+
+        support = {0: 1.0, 1: 1.25, 2: 1.5, 3: 2.0}[self.kind]
+        return touching_separation(weight, self.grid.dx, support)
 
     @staticmethod
     def fields(case):
@@ -67,7 +80,8 @@ class MPMStage:
         g.reset()
         p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n], p["sigma"][:n],
             fext, lp, pfield, g.origin, g.inv_dx, g.strides, g.mass, g.mom,
-            g.force if with_force else None, g.mgrad if self.multi else None)
+            g.force if with_force else None, g.mgrad if self.multi else None,
+            g.mx if self.multi else None)
         # GridHalo.reduce goes here on more than one rank (MPI issue)
 
     def _solve(self, dt, time, with_force):
@@ -75,8 +89,8 @@ class MPMStage:
         grid_velocity(self.dim, g.mass, g.mom, g.force, g.vel, g.dv, dt, self.gravity,
                       self.damping, self.mass_cutoff, with_force)
         if self.multi:
-            multi_field_contact(self.dim, g.mass, g.mgrad, g.vel, g.dv, self.friction,
-                                self.mass_cutoff)
+            multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv, self.friction,
+                                self.mass_cutoff, self.contact_gap)
         self.bcs.apply(time, g.vel, g.dv)
         # GridHalo.broadcast goes here on more than one rank
 
