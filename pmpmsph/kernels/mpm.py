@@ -8,7 +8,7 @@ single-velocity-field MPM, one field per body for multi-field contact.
 import numpy as np
 
 from ..jit import njit
-from ..materials.dispatch import compute_stress
+from ..materials.dispatch import compute_stress_tagged
 from .shapes import axis_weights
 
 
@@ -172,7 +172,8 @@ def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, gvel, gdv):
 
 
 @njit
-def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, mparams, mstate,
+def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, mparams,
+        mstate,
         prestress, gvel, gdv, origin, inv_dx, strides, dt, flip, lo, hi):
     """Gather from the grid (eqs. 80-86) for every particle.
 
@@ -182,7 +183,8 @@ def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, m
     L is evaluated at the position before this step's move. Returns the index of the first
     particle that left the box [lo, hi], became NaN or inverted (det F <= 0), or -1.
     Passing `gdv = None` skips the kinematics, `F = None` the deformation (USF/MUSL passes);
-    `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`).
+    `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`); `mat_tag` fixes
+    the material type at compile time when all particles share it (`material_tag`).
     """
     dim = len(dim_tag)
     kind = len(kind_tag) - 1
@@ -303,7 +305,7 @@ def g2p(dim_tag, kind_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, m
             if not (J > 0.0) and bad < 0:
                 bad = p
             mi = mat[p]
-            compute_stress(mtypes[mi], Fn, L, dt, mstate[p], mparams[mi], sig)
+            compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi], sig)
             if prestress is not None:
                 for a in range(3):
                     for b in range(3):

@@ -22,7 +22,7 @@ STATE_SIZE = 0
 
 
 # ---------------------------------------------------------------- linear elastic
-@njit
+@njit(inline="always")
 def stress_linear_elastic(F, L, dt, state, par, sigma):
     """sigma = lambda tr(eps) I + 2 G eps with eps = sym(F) - I (Raymond, seed 000, eq. 3.11).
 
@@ -57,7 +57,7 @@ def energy_linear_elastic(F, state, par):
 
 
 # ---------------------------------------------------------------- St Venant-Kirchhoff
-@njit
+@njit(inline="always")
 def stress_stvk(F, L, dt, state, par, sigma):
     """S = lambda tr(E) I + 2 mu E, E = (C - I)/2 (seed 003, eq. 46); sigma = F S F^T / J."""
     lam = par[0]
@@ -90,7 +90,7 @@ def energy_stvk(F, state, par):
 
 
 # ---------------------------------------------------------------- neo-Hookean (seed 003)
-@njit
+@njit(inline="always")
 def stress_neo_hookean(F, L, dt, state, par, sigma):
     """sigma = mu/J (F F^T - I) + lambda/J ln(J) I (seed 003, eq. 47)."""
     lam = par[0]
@@ -118,7 +118,7 @@ def energy_neo_hookean(F, state, par):
 
 
 # ---------------------------------------------------------------- Hartmann-Neff neo-Hookean
-@njit
+@njit(inline="always")
 def stress_hartmann_neff(F, L, dt, state, par, sigma):
     """tau = mu dev(B-bar) + k/10 (J^5 - J^-5) 1, sigma = tau / J, B-bar = J^(-2/3) F F^T
     (Shutov & Klyuchantsev, seed 004, eqs. 10-11)."""

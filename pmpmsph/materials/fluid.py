@@ -38,7 +38,7 @@ def tait_pressure(jm1, kappa, gamma):
     return kappa * np.expm1(-gamma * np.log1p(jm1))
 
 
-@njit
+@njit(inline="always")
 def stress_tait_fluid(F, L, dt, state, par, sigma):
     """Cauchy stress of seed 003, eq. 49 with the pressure of eq. 50."""
     kappa = par[0]

@@ -31,7 +31,7 @@ from .tensor import (det3, hartmann_neff_cauchy, hartmann_neff_volumetric_energy
 STATE_SIZE = 6
 
 
-@njit
+@njit(inline="always")
 def stress_maxwell(F, L, dt, state, par, sigma):
     """Update C_i in `state` by seed 004 eq. 16, then write sigma of eqs. 14 and 17."""
     mu = par[0]

@@ -14,7 +14,7 @@ import numpy as np
 from ..jit import njit
 
 
-@njit
+@njit(inline="always")
 def det3(A):
     """Determinant of a general 3x3 array."""
     return (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1])
@@ -22,7 +22,7 @@ def det3(A):
             + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
 
 
-@njit(fastmath=False)
+@njit(fastmath=False, inline="always")
 def det_minus_one(F):
     """J - 1 = det(F) - 1 without cancellation: with H = F - I,
     det(I + H) - 1 = tr H + I2(H) + det H (I2: sum of the principal 2x2 minors)."""
@@ -48,14 +48,14 @@ def trace_C_minus_three(F):
     return s + 2.0 * ((F[0, 0] - 1.0) + (F[1, 1] - 1.0) + (F[2, 2] - 1.0))
 
 
-@njit
+@njit(inline="always")
 def sym_det(xx, yy, zz, xy, yz, xz):
     """Determinant of a symmetric tensor given by its 6 components."""
     return (xx * yy * zz + 2.0 * xy * yz * xz
             - xx * yz * yz - yy * xz * xz - zz * xy * xy)
 
 
-@njit
+@njit(inline="always")
 def sym_inv(xx, yy, zz, xy, yz, xz):
     """Inverse of a symmetric tensor (6-tuple in, 6-tuple out) via the adjugate."""
     cxx = yy * zz - yz * yz
@@ -69,7 +69,7 @@ def sym_inv(xx, yy, zz, xy, yz, xz):
     return cxx * r, cyy * r, czz * r, cxy * r, cyz * r, cxz * r
 
 
-@njit
+@njit(inline="always")
 def right_cauchy_green(F):
     """C = F^T F as a 6-tuple."""
     cxx = F[0, 0] * F[0, 0] + F[1, 0] * F[1, 0] + F[2, 0] * F[2, 0]
@@ -81,7 +81,7 @@ def right_cauchy_green(F):
     return cxx, cyy, czz, cxy, cyz, cxz
 
 
-@njit
+@njit(inline="always")
 def left_cauchy_green(F):
     """B = F F^T as a 6-tuple."""
     bxx = F[0, 0] * F[0, 0] + F[0, 1] * F[0, 1] + F[0, 2] * F[0, 2]
@@ -93,7 +93,7 @@ def left_cauchy_green(F):
     return bxx, byy, bzz, bxy, byz, bxz
 
 
-@njit
+@njit(inline="always")
 def push_forward_sym(F, sxx, syy, szz, sxy, syz, sxz):
     """F S F^T for a symmetric S (6-tuple in, 6-tuple out)."""
     # rows of G = F S
@@ -116,7 +116,7 @@ def push_forward_sym(F, sxx, syy, szz, sxy, syz, sxz):
     return xx, yy, zz, xy, yz, xz
 
 
-@njit
+@njit(inline="always")
 def store_sym(sigma, xx, yy, zz, xy, yz, xz):
     """Write a symmetric tensor (6 scalars) into the 3x3 array `sigma`."""
     sigma[0, 0] = xx
@@ -130,13 +130,13 @@ def store_sym(sigma, xx, yy, zz, xy, yz, xz):
     sigma[2, 0] = xz
 
 
-@njit
+@njit(inline="always")
 def inv_cbrt_sq(J):
     """J^(-2/3), defined through the real cube root (finite also for J < 0)."""
     return 1.0 / np.cbrt(J * J)
 
 
-@njit
+@njit(inline="always")
 def hartmann_neff_cauchy(bxx, byy, bzz, bxy, byz, bxz, J, mu, k, sigma):
     """sigma = [mu dev(b) + k/10 (J^5 - J^-5) 1] / J for a unimodular b
     (Shutov & Klyuchantsev, seed 004, eq. 11; used with b = B-bar by the

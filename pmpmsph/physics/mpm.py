@@ -12,6 +12,7 @@ import numpy as np
 from ..kernels.contact import multi_field_contact, touching_separation
 from ..kernels.mpm import g2p, grid_velocity, p2g
 from ..kernels.shapes import SHAPE_CODES, static_tags
+from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
 from .grid import Grid
@@ -38,6 +39,8 @@ class MPMStage:
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
         self.mtypes, self.mparams = materials
+        used = {list(case.materials).index(b.material) for b in case.bodies if b.method == "mpm"}
+        self.mat_tag = material_tag(self.mtypes[sorted(used)])
         self.halo_exchange = halo_exchange
 
     def _contact_gap(self):
@@ -97,7 +100,7 @@ class MPMStage:
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p
         n, lp, _, pfield, pre, mstate = self._optional()
-        return g2p(*self.tags, p["x"][:n], p["v"][:n], p["F"][:n] if deformation else None,
+        return g2p(*self.tags, self.mat_tag, p["x"][:n], p["v"][:n], p["F"][:n] if deformation else None,
                    p["sigma"][:n], p["vol"][:n], p["vol0"][:n], lp, pfield, p["mat"][:n],
                    self.mtypes, self.mparams, mstate, pre, g.vel,
                    g.dv if kinematics else None, g.origin, g.inv_dx, g.strides, dt, self.flip,
