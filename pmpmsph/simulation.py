@@ -14,7 +14,9 @@ import numpy as np
 from .build import build_particles, material_arrays
 from .errors import ConfigError, RunError
 from .kernels.diagnostics import max_signal_speed, particle_sums
+from .parallel.decomposition import Decomposition
 from .parallel.distributor import Distributor
+from .parallel.migration import migrate
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
 from .timing import Timers
@@ -32,18 +34,19 @@ class Simulation:
         t0 = time.perf_counter()
         self.case = case
         self.dist = dist or Distributor()
-        if self.dist.size > 1:
-            raise ConfigError("<mpirun -n>", f"running on {self.dist.size} ranks needs the slab "
-                              "decomposition, which this build does not have yet: use one rank")
         self.timers = Timers()
         self.time = 0.0
         self.step_count = 0
         self.dim = case.dim
-        self.particles = build_particles(case)
+        self.decomposition = Decomposition(self.dist, case.grid) if case.grid else None
+        self.particles = build_particles(
+            case, keep=self.decomposition.keep if self.decomposition else None)
         self.materials = material_arrays(case)
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
-        self.mpm = MPMStage(case, self.particles, self.materials) if case.has_mpm else None
+        self.mpm = (MPMStage(case, self.particles, self.materials, self.decomposition)
+                    if case.has_mpm else None)
+        self.migrated = 0
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
@@ -176,6 +179,10 @@ class Simulation:
             self._fail(bad)
         self.time += self.dt
         self.step_count += 1
+        if self.decomposition is not None and self.dist.size > 1:
+            with self.timers.phase("migration"):
+                sent, _ = migrate(self.decomposition, self.particles, self.step_count)
+                self.migrated += sent
         self._update_dt()
 
     def _fail(self, bad):

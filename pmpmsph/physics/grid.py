@@ -11,7 +11,14 @@ from ..kernels.shapes import GRID_PAD
 
 
 class Grid:
-    def __init__(self, spec, nfields=1, with_normals=False):
+    """Nodal arrays of the nodes this rank stores.
+
+    `node_range = (axis, lo, hi)` restricts the grid along one axis to the padded global node
+    indices [lo, hi) (a slab with its ghost layers, see `parallel.decomposition`); the local
+    origin is shifted so the kernels index local nodes directly.
+    """
+
+    def __init__(self, spec, nfields=1, with_normals=False, node_range=None):
         self.spec = spec
         self.dim = spec.dim
         self.pad = GRID_PAD
@@ -20,8 +27,15 @@ class Grid:
             # one cell size for all axes keeps stencils isotropic (thesis uses dx = dy)
             raise ValueError("non-square cells")
         self.inv_dx = 1.0 / self.dx
-        self.origin = np.array(spec.origin, dtype=np.float64)
-        self.shape = tuple(int(n) + 1 + 2 * self.pad for n in spec.cells)
+        self.global_origin = np.array(spec.origin, dtype=np.float64)
+        shape = [int(n) + 1 + 2 * self.pad for n in spec.cells]
+        self.offset = np.zeros(self.dim, dtype=np.int64)  # global padded index of local node 0
+        if node_range is not None:
+            axis, lo, hi = node_range
+            self.offset[axis] = lo
+            shape[axis] = hi - lo
+        self.shape = tuple(shape)
+        self.origin = self.global_origin + self.offset * self.dx
         strides = np.ones(self.dim, dtype=np.int64)
         for a in range(self.dim - 2, -1, -1):
             strides[a] = strides[a + 1] * self.shape[a + 1]
@@ -37,8 +51,12 @@ class Grid:
         self.mgrad = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
         self.mx = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
         #: the domain and the band around it in which particles may be (one cell outside)
-        self.lo = self.origin - self.dx
+        self.lo = self.global_origin - self.dx
         self.hi = np.array(spec.upper) + self.dx
+
+    def block(self, arr):
+        """`arr` (nfields, n_nodes[, dim]) viewed as (nfields, *shape[, dim])."""
+        return arr.reshape((arr.shape[0],) + self.shape + arr.shape[2:])
 
     def reset(self):
         self.mass.fill(0.0)
@@ -48,15 +66,18 @@ class Grid:
             self.mgrad.fill(0.0)
             self.mx.fill(0.0)
 
+    def global_index(self):
+        """Padded global node index of every local node, (dim, n_nodes)."""
+        return np.indices(self.shape).reshape(self.dim, -1) + self.offset[:, None]
+
     def node_coords(self):
-        """Physical coordinates of all nodes, (n_nodes, dim)."""
-        idx = np.indices(self.shape).reshape(self.dim, -1).T
-        return self.origin + (idx - self.pad) * self.dx
+        """Physical coordinates of all local nodes, (n_nodes, dim)."""
+        return self.global_origin + (self.global_index().T - self.pad) * self.dx
 
     def nodes_on_face(self, face):
         """Flat indices of nodes on a domain face and outside it (the padding)."""
         axis = "xyz".index(face[0])
-        idx = np.indices(self.shape).reshape(self.dim, -1)[axis]
+        idx = self.global_index()[axis]
         if face[1] == "-":
             sel = idx <= self.pad
         else:

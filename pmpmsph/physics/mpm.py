@@ -16,10 +16,11 @@ from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
 from .grid import Grid
+from ..parallel.grid_halo import GridHalo
 
 
 class MPMStage:
-    def __init__(self, case, particles, materials, halo_exchange=None):
+    def __init__(self, case, particles, materials, decomposition):
         self.case = case
         self.p = particles
         spec = case.mpm
@@ -33,15 +34,23 @@ class MPMStage:
         self.multi = spec.contact == "multi"
         self.friction = spec.friction
         nfields = len(case.bodies) if self.multi else 1
-        self.grid = Grid(case.grid, nfields=nfields, with_normals=self.multi)
+        self.nfields = nfields
+        self.set_decomposition(decomposition)
         self.contact_gap = self._contact_gap() if self.multi else 0.0
-        self.bcs = GridBoundaries(case.boundaries, self.grid)
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
         self.mtypes, self.mparams = materials
         used = {list(case.materials).index(b.material) for b in case.bodies if b.method == "mpm"}
         self.mat_tag = material_tag(self.mtypes[sorted(used)])
-        self.halo_exchange = halo_exchange
+
+    def set_decomposition(self, decomposition):
+        """(Re)build the local grid, its boundary conditions and ghost-node plan for a slab."""
+        self.dec = decomposition
+        lo, hi = decomposition.local_nodes()
+        self.grid = Grid(self.case.grid, nfields=self.nfields, with_normals=self.multi,
+                         node_range=(decomposition.axis, lo, hi))
+        self.bcs = GridBoundaries(self.case.boundaries, self.grid)
+        self.halo = GridHalo(decomposition, self.grid)
 
     def _contact_gap(self):
         """Displacement-check threshold of multi-field contact for this shape function."""
@@ -85,7 +94,10 @@ class MPMStage:
             fext, lp, pfield, g.origin, g.inv_dx, g.strides, g.mass, g.mom,
             g.force if with_force else None, g.mgrad if self.multi else None,
             g.mx if self.multi else None)
-        # GridHalo.reduce goes here on more than one rank (MPI issue)
+        sums = [g.mass, g.mom] + ([g.force] if with_force else [])
+        if self.multi:
+            sums += [g.mgrad, g.mx]
+        self.halo.reduce(sums)
 
     def _solve(self, dt, time, with_force):
         g = self.grid
@@ -95,7 +107,7 @@ class MPMStage:
             multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv, self.friction,
                                 self.mass_cutoff, self.contact_gap)
         self.bcs.apply(time, g.vel, g.dv)
-        # GridHalo.broadcast goes here on more than one rank
+        self.halo.broadcast([g.vel, g.dv])
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p

@@ -1,0 +1,106 @@
+"""Slab decomposition of the global grid along one axis (DESIGN.md §4).
+
+Rank r owns the cells [faces[r], faces[r+1]) along `axis` (domain cell indices), the grid
+nodes with those indices (the last rank also the closing node, rank 0 and the last rank the
+padding outside the domain) and the particles whose cell lies there. Each rank keeps a local
+grid of its owned nodes plus `GHOST` node layers on each side, which the neighbours own.
+With one rank the same code runs with no neighbours.
+"""
+import numpy as np
+
+from ..errors import ConfigError
+from ..kernels.shapes import GRID_PAD
+
+#: ghost node layers on each side of a slab: a particle in an owned cell touches at most one
+#: node below its cell and two above (cubic B-spline), plus one layer for particles that have
+#: moved up to a cell since the last migration (MUSL's second P2G comes before migration)
+GHOST = 3
+#: the thinnest slab (in cells): ghost layers must lie in the two neighbouring slabs only
+MIN_SLAB = GHOST
+
+
+def default_axis(cells):
+    """The longest axis (the first of equals), so slabs are as thick as possible."""
+    return int(np.argmax(cells))
+
+
+class Decomposition:
+    def __init__(self, dist, grid_spec, axis=None, faces=None):
+        self.dist = dist
+        self.spec = grid_spec
+        self.axis = default_axis(grid_spec.cells) if axis is None else axis
+        self.ncells = int(grid_spec.cells[self.axis])
+        self.dx = float(grid_spec.cell_size[self.axis])
+        self.origin = float(grid_spec.origin[self.axis])
+        size = dist.size
+        if self.ncells < MIN_SLAB * size:
+            raise ConfigError("grid.cells", f"{self.ncells} cells along axis {'xyz'[self.axis]} "
+                              f"cannot make {size} slabs of at least {MIN_SLAB} cells: use at "
+                              f"most {self.ncells // MIN_SLAB} ranks")
+        if faces is None:
+            faces = np.round(np.linspace(0, self.ncells, size + 1)).astype(np.int64)
+        self.faces = np.asarray(faces, dtype=np.int64)
+        self.rank = dist.rank
+        self.size = size
+
+    # -- ownership ----------------------------------------------------------------------------
+    @property
+    def lo_cell(self):
+        return int(self.faces[self.rank])
+
+    @property
+    def hi_cell(self):
+        return int(self.faces[self.rank + 1])
+
+    @property
+    def left(self):
+        return self.rank - 1 if self.rank > 0 else None
+
+    @property
+    def right(self):
+        return self.rank + 1 if self.rank < self.size - 1 else None
+
+    def cell_of(self, x):
+        """Domain cell index along the slab axis of positions x (n, dim), clipped to the grid."""
+        c = np.floor((x[:, self.axis] - self.origin) / self.dx).astype(np.int64)
+        return np.clip(c, 0, self.ncells - 1)
+
+    def owner(self, x):
+        """Owning rank of each position."""
+        return np.searchsorted(self.faces, self.cell_of(x), side="right") - 1
+
+    def keep(self, x):
+        """Mask of positions this rank owns (used while seeding)."""
+        return self.owner(x) == self.rank
+
+    # -- nodes ---------------------------------------------------------------------------------
+    def owned_nodes(self, rank=None):
+        """[lo, hi) of owned nodes along the axis, in padded global node indices."""
+        r = self.rank if rank is None else rank
+        lo = int(self.faces[r]) + GRID_PAD
+        hi = int(self.faces[r + 1]) + GRID_PAD
+        if r == 0:
+            lo = 0
+        if r == self.size - 1:
+            hi = self.ncells + 1 + 2 * GRID_PAD
+        return lo, hi
+
+    def local_nodes(self, rank=None):
+        """[lo, hi) of the nodes a rank stores: owned plus GHOST layers inside the grid."""
+        lo, hi = self.owned_nodes(rank)
+        total = self.ncells + 1 + 2 * GRID_PAD
+        return max(lo - GHOST, 0), min(hi + GHOST, total)
+
+    def overlap(self, nb):
+        """Node ranges shared with neighbour `nb` (padded global indices):
+        (my ghosts that nb owns, my owned nodes that are nb's ghosts)."""
+        my_lo, my_hi = self.local_nodes()
+        own_lo, own_hi = self.owned_nodes()
+        nb_lo, nb_hi = self.local_nodes(nb)
+        nb_own_lo, nb_own_hi = self.owned_nodes(nb)
+        ghosts = (max(my_lo, nb_own_lo), min(my_hi, nb_own_hi))
+        shared = (max(own_lo, nb_lo), min(own_hi, nb_hi))
+        return ghosts, shared
+
+    def with_faces(self, faces):
+        return Decomposition(self.dist, self.spec, self.axis, faces)

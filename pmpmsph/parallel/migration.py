@@ -1,0 +1,95 @@
+"""Particle migration between neighbouring slabs after the position update (DESIGN.md §4).
+
+Owned particles whose cell left this rank's slab are packed, field by field, into one byte
+row per particle and sent to the neighbour that owns them; only the two neighbours are
+contacted. A particle that would have to cross a whole slab in one step is an error (dt or
+the slab is wrong), decided collectively so no rank waits forever.
+"""
+import numpy as np
+
+from ..errors import RunError
+
+TAG_COUNT = 21
+TAG_DATA = 22
+
+
+def _pack(particles, names, idx):
+    cols = []
+    for name in names:
+        arr = particles[name][idx]
+        width = int(np.prod(arr.shape[1:], dtype=np.int64))
+        cols.append(np.ascontiguousarray(arr).reshape(len(idx), width).view(np.uint8))
+    if not cols:
+        return np.zeros((len(idx), 0), np.uint8)
+    return np.ascontiguousarray(np.concatenate(cols, axis=1))
+
+
+def _unpack(particles, names, rows):
+    out = {}
+    pos = 0
+    n = rows.shape[0]
+    for name in names:
+        spec = particles.specs[name]
+        shape = particles._shape(spec, n)
+        itemsize = np.dtype(spec.dtype).itemsize
+        width = int(np.prod(shape[1:], dtype=np.int64)) * itemsize
+        chunk = np.ascontiguousarray(rows[:, pos:pos + width])
+        out[name] = chunk.view(spec.dtype).reshape(shape)
+        pos += width
+    return out
+
+
+def migrate(decomposition, particles, step=0):
+    """Send owned particles to the neighbours that own them now; returns (sent, received)."""
+    dec = decomposition
+    if dec.size == 1:
+        return 0, 0
+    from mpi4py import MPI
+
+    n = particles.n_owned
+    owner = dec.owner(particles["x"][:n])
+    far = np.nonzero(np.abs(owner - dec.rank) > 1)[0]
+    if dec.dist.any(len(far) > 0):
+        gid = int(particles["gid"][far[0]]) if len(far) else -1
+        raise RunError(step, gid, "particle jumped over a whole slab in one step (dt too "
+                       "large for the slab width, or the particle was thrown out)")
+    names = particles.fields(migrate=True)
+    comm = dec.dist.comm
+    keep = owner == dec.rank
+    sends = []
+    for nb in (dec.left, dec.right):
+        if nb is None:
+            continue
+        idx = np.nonzero(owner == nb)[0]
+        sends.append((nb, _pack(particles, names, idx)))
+    counts = {}
+    reqs = []
+    count_bufs = []
+    for nb, rows in sends:
+        out = np.array([rows.shape[0], rows.shape[1]], np.int64)
+        inc = np.zeros(2, np.int64)
+        count_bufs.append((nb, out, inc))
+        reqs.append(comm.Isend(out, dest=nb, tag=TAG_COUNT))
+        reqs.append(comm.Irecv(inc, source=nb, tag=TAG_COUNT))
+    MPI.Request.Waitall(reqs)
+    for nb, _, inc in count_bufs:
+        counts[nb] = inc
+    reqs = []
+    recv_rows = []
+    for nb, rows in sends:
+        k, width = counts[nb]
+        buf = np.empty((int(k), int(width)), np.uint8)
+        recv_rows.append(buf)
+        if rows.size:
+            reqs.append(comm.Isend(rows, dest=nb, tag=TAG_DATA))
+        if buf.size:
+            reqs.append(comm.Irecv(buf, source=nb, tag=TAG_DATA))
+    MPI.Request.Waitall(reqs)
+    sent = int(n - keep.sum())
+    particles.remove(np.nonzero(~keep)[0])
+    received = 0
+    for buf in recv_rows:
+        if buf.shape[0]:
+            particles.append(_unpack(particles, names, buf))
+            received += buf.shape[0]
+    return sent, received
