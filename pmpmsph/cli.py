@@ -124,6 +124,14 @@ def main(argv=None):
             print(f"error: invalid input at '--out': {exc} (pass --overwrite)", file=sys.stderr)
         return EXIT_CONFIG
     except RunError as exc:
-        if dist.is_root or exc.gid >= 0:
+        if dist.is_root:
             print(f"error: {exc}", file=sys.stderr)
+        return EXIT_RUNTIME
+    except Exception:  # a bug or fault on this rank only: take every rank down, never hang
+        import traceback
+
+        print(f"[rank {dist.rank}] internal error, stopping all ranks:\n"
+              + traceback.format_exc(), file=sys.stderr, flush=True)
+        if dist.size > 1:
+            dist.comm.Abort(EXIT_RUNTIME)
         return EXIT_RUNTIME

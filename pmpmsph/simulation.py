@@ -16,7 +16,8 @@ from .errors import ConfigError, RunError
 from .kernels.diagnostics import max_signal_speed, particle_sums
 from .parallel.decomposition import Decomposition
 from .parallel.distributor import Distributor
-from .parallel.migration import migrate
+from .parallel.balance import LoadBalancer
+from .parallel.migration import migrate, migrate_all
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
 from .timing import Timers
@@ -38,7 +39,12 @@ class Simulation:
         self.time = 0.0
         self.step_count = 0
         self.dim = case.dim
-        self.decomposition = Decomposition(self.dist, case.grid) if case.grid else None
+        self.decomposition = (Decomposition(self.dist, case.grid, axis=case.parallel.axis)
+                              if case.grid else None)
+        self.balancer = (LoadBalancer(case.parallel.balance_every,
+                                      case.parallel.balance_threshold)
+                         if self.decomposition is not None and self.dist.size > 1
+                         and case.parallel.balance_every > 0 else None)
         self.particles = build_particles(
             case, keep=self.decomposition.keep if self.decomposition else None)
         self.materials = material_arrays(case)
@@ -56,6 +62,8 @@ class Simulation:
         self.writer = self.diag = None
         self._sums = np.zeros(7)
         self._last_snapshot_step = -1
+        fault = os.environ.get("PMPMSPH_INJECT_FAULT")  # "rank:step", for the fault tests
+        self._fault = tuple(int(v) for v in fault.split(":")) if fault else None
         self._next_snapshot_time = 0.0
         if write_output and out_dir is not None:
             self._open_output(overwrite)
@@ -165,6 +173,9 @@ class Simulation:
     # -- the step ----------------------------------------------------------------------------
     def step(self):
         """One time step in the fixed order of DESIGN.md §3 (stages the scene lacks are absent)."""
+        if self._fault is not None and self._fault == (self.dist.rank, self.step_count):
+            raise RuntimeError(f"fault injected on rank {self.dist.rank} at step "
+                               f"{self.step_count} (PMPMSPH_INJECT_FAULT)")
         if self.prescribed is not None:
             self.prescribed.apply(self.time)
         if self.loads is not None:
@@ -183,7 +194,33 @@ class Simulation:
             with self.timers.phase("migration"):
                 sent, _ = migrate(self.decomposition, self.particles, self.step_count)
                 self.migrated += sent
+        if self.balancer is not None and self.step_count % self.balancer.every == 0:
+            with self.timers.phase("balance"):
+                self.rebalance()
         self._update_dt()
+
+    def rebalance(self, force_faces=None):
+        """Move slab faces if the work is out of balance (collective); True if they moved."""
+        dec = self.decomposition
+        cells = list(self.case.grid.cells)
+        nodes_per_layer = float(np.prod([c + 1 for a, c in enumerate(cells) if a != dec.axis]))
+        if force_faces is not None:
+            faces, before, after = np.asarray(force_faces), None, None
+        else:
+            faces, before, after = self.balancer.propose(dec, self.particles["x"],
+                                                         nodes_per_layer)
+        if faces is None:
+            return False
+        self.decomposition = dec.with_faces(faces)
+        if self.mpm is not None:
+            self.mpm.set_decomposition(self.decomposition)
+        self.migrated += migrate_all(self.decomposition, self.particles, self.step_count)
+        if self.balancer is not None:
+            self.balancer.history.append((self.step_count, before, after, faces.tolist()))
+        log.info("step %d: slab faces moved to %s (imbalance %s -> %s)", self.step_count,
+                 faces.tolist(), f"{before:.2f}" if before is not None else "?",
+                 f"{after:.2f}" if after is not None else "?")
+        return True
 
     def _fail(self, bad):
         p = self.particles
@@ -198,6 +235,9 @@ class Simulation:
                 cause = f"det F = {J:.3g} <= 0 (inverted material)"
             else:
                 cause = f"left the grid at x = {np.round(x, 6).tolist()}"
+        if self.dist.size > 1:  # every rank reports the same failure (printed once, by rank 0)
+            found = [f for f in self.dist.comm.allgather((gid, cause)) if f[0] >= 0]
+            gid, cause = found[0] if found else (gid, cause)
         raise RunError(self.step_count + 1, gid, cause)
 
     # -- the loop ------------------------------------------------------------------------------

@@ -109,6 +109,13 @@ class OutputSpec:
 
 
 @dataclass(frozen=True)
+class ParallelSpec:
+    axis: Optional[int] = None      # slab axis; None = the longest
+    balance_every: int = 50         # steps between load-balance checks (0: never)
+    balance_threshold: float = 0.1  # rebalance when max work / mean work - 1 exceeds this
+
+
+@dataclass(frozen=True)
 class Case:
     name: str
     dim: int
@@ -122,6 +129,7 @@ class Case:
     gravity: tuple = ()
     time: TimeSpec = None
     output: OutputSpec = field(default_factory=OutputSpec)
+    parallel: ParallelSpec = field(default_factory=ParallelSpec)
     text: str = ""
 
     @property

@@ -11,8 +11,8 @@ from ..errors import ConfigError
 from ..materials import material_from_table
 from ..scene.geometry import Box, Disc, Polygon
 from .case import (BC_KINDS, CONTACTS, METHODS, SHAPES, TRANSFERS, BodySpec, BoundarySpec,
-                   Case, GridSpec, LoadSpec, MPMSpec, OutputSpec, PrescribedSpec, Region,
-                   TimeSpec)
+                   Case, GridSpec, LoadSpec, MPMSpec, OutputSpec, ParallelSpec, PrescribedSpec,
+                   Region, TimeSpec)
 from .table import Table
 
 FACES = ("x-", "x+", "y-", "y+", "z-", "z+")
@@ -293,7 +293,13 @@ def case_from_dict(data, name="case", text=""):
                         diagnostics_every=ot.number("diagnostics_every", 1, integer=True, min=1),
                         fields=tuple(fields), folder=ot.string("folder", "output"))
     ot.finish()
+    pt = root.sub("parallel", {})
+    axis = pt.string("axis", "auto", choices=("auto",) + tuple("xyz"[:dim]))
+    parallel = ParallelSpec(axis=None if axis == "auto" else "xyz".index(axis),
+                            balance_every=pt.number("balance_every", 50, integer=True, min=0),
+                            balance_threshold=pt.number("balance_threshold", 0.1, min_open=0.0))
+    pt.finish()
     root.finish()
     return Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
                 boundaries=boundaries, loads=loads, prescribed=prescribed, gravity=gravity,
-                time=TimeSpec(end, dt, cfl), output=output, text=text)
+                time=TimeSpec(end, dt, cfl), output=output, parallel=parallel, text=text)

@@ -39,8 +39,12 @@ def _unpack(particles, names, rows):
     return out
 
 
-def migrate(decomposition, particles, step=0):
-    """Send owned particles to the neighbours that own them now; returns (sent, received)."""
+def migrate(decomposition, particles, step=0, hop=False):
+    """Send owned particles to the neighbours that own them now; returns (sent, received).
+
+    With `hop` (after the slab faces moved) a particle owned further away goes one slab
+    towards its owner; call again until nothing moves (`migrate_all`).
+    """
     dec = decomposition
     if dec.size == 1:
         return 0, 0
@@ -48,6 +52,8 @@ def migrate(decomposition, particles, step=0):
 
     n = particles.n_owned
     owner = dec.owner(particles["x"][:n])
+    if hop:
+        owner = np.clip(owner, dec.rank - 1, dec.rank + 1)
     far = np.nonzero(np.abs(owner - dec.rank) > 1)[0]
     if dec.dist.any(len(far) > 0):
         gid = int(particles["gid"][far[0]]) if len(far) else -1
@@ -93,3 +99,14 @@ def migrate(decomposition, particles, step=0):
             particles.append(_unpack(particles, names, buf))
             received += buf.shape[0]
     return sent, received
+
+
+def migrate_all(decomposition, particles, step=0):
+    """Migrate with hops until every particle is on its owner (after faces moved)."""
+    total = 0
+    for _ in range(decomposition.size):
+        sent, _ = migrate(decomposition, particles, step, hop=True)
+        total += sent
+        if not decomposition.dist.any(sent > 0):
+            break
+    return total

@@ -1,0 +1,66 @@
+"""Load balancing: move slab faces by whole cells towards equal work (DESIGN.md §4).
+
+Work of a cell layer along the slab axis = its particles + NODE_COST x its grid nodes, where
+NODE_COST is the cost of a grid node relative to a particle step, measured with
+`python -m pmpmsph.bench` (grid solve + reset + halo per node against P2G + G2P per particle:
+about 0.05-0.1; 0.1 is used). Every `every` steps the global layer histogram is reduced; if
+the most loaded rank exceeds the mean by more than `threshold`, new faces are placed at the
+quantiles of the cumulative work and kept only if they cut the imbalance at least in half
+(hysteresis: a balanced partition never flips back and forth). Deterministic: every rank
+computes the same faces from the same global histogram.
+"""
+import numpy as np
+
+from .decomposition import MIN_SLAB
+
+NODE_COST = 0.1
+
+
+def layer_work(dec, x, nodes_per_layer):
+    """Global work of each cell layer along the slab axis (same array on every rank)."""
+    counts = np.bincount(dec.cell_of(x), minlength=dec.ncells).astype(np.float64)
+    counts = dec.dist.sum(counts)
+    return counts + NODE_COST * nodes_per_layer
+
+
+def rank_work(faces, work):
+    return np.array([work[faces[r]:faces[r + 1]].sum() for r in range(len(faces) - 1)])
+
+
+def imbalance(faces, work):
+    w = rank_work(faces, work)
+    return w.max() / max(w.mean(), 1e-300) - 1.0
+
+
+def balanced_faces(work, size, min_width=MIN_SLAB):
+    """Faces at the quantiles of cumulative work, each slab at least `min_width` cells."""
+    n = len(work)
+    cum = np.concatenate([[0.0], np.cumsum(work)])
+    faces = [0]
+    for r in range(1, size):
+        target = cum[-1] * r / size
+        f = int(np.argmin(np.abs(cum - target)))
+        lo = faces[-1] + min_width
+        hi = n - (size - r) * min_width
+        faces.append(min(max(f, lo), hi))
+    faces.append(n)
+    return np.array(faces, dtype=np.int64)
+
+
+class LoadBalancer:
+    def __init__(self, every, threshold):
+        self.every = every
+        self.threshold = threshold
+        self.history = []  # (step, imbalance before, imbalance after, faces)
+
+    def propose(self, dec, x, nodes_per_layer):
+        """New faces, or None to keep the present ones; collective (all ranks call it)."""
+        work = layer_work(dec, x, nodes_per_layer)
+        before = imbalance(dec.faces, work)
+        if before <= self.threshold:
+            return None, before, before
+        faces = balanced_faces(work, dec.size)
+        after = imbalance(faces, work)
+        if np.array_equal(faces, dec.faces) or after > 0.5 * before:
+            return None, before, before
+        return faces, before, after

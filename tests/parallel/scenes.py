@@ -1,0 +1,30 @@
+"""Small scenes shared by the parallel tests (Python Scene API, seconds to run)."""
+from pmpmsph import Scene
+
+
+def two_disks(contact="single", shape="linear", spacing=0.02):
+    """BENCHMARKS.md scene 3 (thesis §8.3) on its 20x20 grid."""
+    sc = Scene(2, grid=dict(origin=[0, 0], length=[1, 1], cells=[20, 20]),
+               time=dict(end=3.0, dt=1e-3), mpm=dict(shape=shape, contact=contact))
+    sc.material("m", model="neo_hookean", E=1000.0, nu=0.3, rho=1000.0)
+    sc.body(name="a", material="m", shape="disc", centre=[0.2, 0.2], radius=0.2,
+            spacing=spacing, velocity=[0.1, 0.1])
+    sc.body(name="b", material="m", shape="disc", centre=[0.8, 0.8], radius=0.2,
+            spacing=spacing, velocity=[-0.1, -0.1])
+    return sc
+
+
+def dam_break(shape="quadratic", transfer="usl", barrier=True, balance_every=0):
+    """BENCHMARKS.md scene 4 set-up (thesis §8.4): 4 x 2 column behind a gate removed at
+    t = 0, slip walls, a barrier at x = 6 inside a grid extended to x = 8."""
+    sc = Scene(2, grid=dict(origin=[0, 0], length=[8, 8], cells=[24, 24]),
+               time=dict(end=2.0, dt=1e-3), gravity=[0, -9.81],
+               mpm=dict(shape=shape, transfer=transfer),
+               parallel=dict(axis="x", balance_every=balance_every))
+    sc.material("water", model="tait", rho=997.5, kappa=2e6, gamma=7.0, mu=0.01)
+    sc.body(name="water", material="water", shape="box", min=[0, 0], max=[4, 2], ppc=2)
+    for face in ("x-", "x+", "y-", "y+"):
+        sc.boundary(face=face, type="slip")
+    if barrier:
+        sc.boundary(box=dict(min=[6, 0], max=[6, 1]), type="slip", normal=[1, 0])
+    return sc
