@@ -50,12 +50,15 @@ class Simulation:
         self.materials = material_arrays(case)
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
-        self.mpm = (MPMStage(case, self.particles, self.materials, self.decomposition)
-                    if case.has_mpm else None)
+        self.mpm = (MPMStage(case, self.particles, self.materials, self.decomposition,
+                             self.timers) if case.has_mpm else None)
         self.migrated = 0
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
+        if self.balancer is not None:  # seeding used equal slabs: balance before step 1
+            with self.timers.phase("balance"):
+                self.rebalance()
         self.h = min(case.grid.cell_size)
         self.dt = self._initial_dt()
         self.out_dir = out_dir
@@ -182,8 +185,7 @@ class Simulation:
             self.loads.update(self.time)
         bad = -1
         if self.mpm is not None:
-            with self.timers.phase("mpm"):
-                bad = self.mpm.step(self.dt, self.time)
+            bad = self.mpm.step(self.dt, self.time)
         if self.prescribed is not None:
             self.prescribed.apply(self.time + self.dt)
         if self.dist.any(bad >= 0):

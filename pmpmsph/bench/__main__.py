@@ -24,7 +24,22 @@ def main(argv=None):
     tp.add_argument("--no-peers", action="store_true")
     tp.add_argument("--install-peers", action="store_true")
     tp.add_argument("--out", default="bench_results")
+    sc = sub.add_parser("scaling", help="strong scaling 1..N ranks, per-phase times")
+    sc.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    sc.add_argument("--particles", type=int, default=500_000)
+    sc.add_argument("--steps", type=int, default=100)
+    sc.add_argument("--out", default="bench_results")
+    argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] == "scaling-worker":
+        from .scaling import worker
+
+        return worker(argv[1:])
     args = ap.parse_args(argv)
+    if args.command == "scaling":
+        from .scaling import run
+
+        run(args.ranks, args.particles, args.steps, args.out)
+        return 0
 
     from .peers import install_peers, run_peer
     from .throughput import bench_mpm, bench_small

@@ -18,6 +18,7 @@ class GridHalo:
         self.comm = decomposition.dist.comm
         self.axis = decomposition.axis
         off = int(grid.offset[self.axis])
+        self.bytes_sent = 0
         self.plan = []  # (neighbour, ghost slice, shared slice) in local node indices
         for nb in (decomposition.left, decomposition.right):
             if nb is None:
@@ -42,6 +43,7 @@ class GridHalo:
             sendbuf = np.concatenate([self._view(a, out_sl).ravel() for a in arrays])
             recvbuf = np.empty(sum(self._view(a, in_sl).size for a in arrays))
             reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=tag))
+            self.bytes_sent += sendbuf.nbytes
             reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag))
             recvs.append((in_sl, recvbuf, sendbuf))
         MPI.Request.Waitall(reqs)

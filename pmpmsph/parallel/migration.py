@@ -92,6 +92,7 @@ def migrate(decomposition, particles, step=0, hop=False):
             reqs.append(comm.Irecv(buf, source=nb, tag=TAG_DATA))
     MPI.Request.Waitall(reqs)
     sent = int(n - keep.sum())
+    migrate.bytes_sent += sum(rows.nbytes for _, rows in sends)
     particles.remove(np.nonzero(~keep)[0])
     received = 0
     for buf in recv_rows:
@@ -99,6 +100,9 @@ def migrate(decomposition, particles, step=0, hop=False):
             particles.append(_unpack(particles, names, buf))
             received += buf.shape[0]
     return sent, received
+
+
+migrate.bytes_sent = 0
 
 
 def migrate_all(decomposition, particles, step=0):

@@ -17,10 +17,11 @@ from ..particles import FieldSpec
 from .boundary import GridBoundaries
 from .grid import Grid
 from ..parallel.grid_halo import GridHalo
+from ..timing import Timers
 
 
 class MPMStage:
-    def __init__(self, case, particles, materials, decomposition):
+    def __init__(self, case, particles, materials, decomposition, timers=None):
         self.case = case
         self.p = particles
         spec = case.mpm
@@ -35,6 +36,7 @@ class MPMStage:
         self.friction = spec.friction
         nfields = len(case.bodies) if self.multi else 1
         self.nfields = nfields
+        self.timers = timers if timers is not None else Timers()
         self.set_decomposition(decomposition)
         self.contact_gap = self._contact_gap() if self.multi else 0.0
         self.gravity = np.zeros(3)
@@ -89,34 +91,40 @@ class MPMStage:
     def _p2g(self, with_force):
         g, p = self.grid, self.p
         n, lp, fext, pfield, _, _ = self._optional()
-        g.reset()
-        p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n], p["sigma"][:n],
-            fext, lp, pfield, g.origin, g.inv_dx, g.strides, g.mass, g.mom,
-            g.force if with_force else None, g.mgrad if self.multi else None,
-            g.mx if self.multi else None)
+        t = self.timers
+        with t.phase("p2g"):
+            g.reset()
+            p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n],
+                p["sigma"][:n], fext, lp, pfield, g.origin, g.inv_dx, g.strides, g.mass,
+                g.mom, g.force if with_force else None, g.mgrad if self.multi else None,
+                g.mx if self.multi else None)
         sums = [g.mass, g.mom] + ([g.force] if with_force else [])
         if self.multi:
             sums += [g.mgrad, g.mx]
-        self.halo.reduce(sums)
+        with t.phase("halo"):
+            self.halo.reduce(sums)
 
     def _solve(self, dt, time, with_force):
         g = self.grid
-        grid_velocity(self.dim, g.mass, g.mom, g.force, g.vel, g.dv, dt, self.gravity,
-                      self.damping, self.mass_cutoff, with_force)
-        if self.multi:
-            multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv, self.friction,
-                                self.mass_cutoff, self.contact_gap)
-        self.bcs.apply(time, g.vel, g.dv)
-        self.halo.broadcast([g.vel, g.dv])
+        with self.timers.phase("grid"):
+            grid_velocity(self.dim, g.mass, g.mom, g.force, g.vel, g.dv, dt, self.gravity,
+                          self.damping, self.mass_cutoff, with_force)
+            if self.multi:
+                multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv,
+                                    self.friction, self.mass_cutoff, self.contact_gap)
+            self.bcs.apply(time, g.vel, g.dv)
+        with self.timers.phase("halo"):
+            self.halo.broadcast([g.vel, g.dv])
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p
         n, lp, _, pfield, pre, mstate = self._optional()
-        return g2p(*self.tags, self.mat_tag, p["x"][:n], p["v"][:n], p["F"][:n] if deformation else None,
-                   p["sigma"][:n], p["vol"][:n], p["vol0"][:n], lp, pfield, p["mat"][:n],
-                   self.mtypes, self.mparams, mstate, pre, g.vel,
-                   g.dv if kinematics else None, g.origin, g.inv_dx, g.strides, dt, self.flip,
-                   g.lo, g.hi)
+        with self.timers.phase("g2p"):
+            return g2p(*self.tags, self.mat_tag, p["x"][:n], p["v"][:n],
+                       p["F"][:n] if deformation else None, p["sigma"][:n], p["vol"][:n],
+                       p["vol0"][:n], lp, pfield, p["mat"][:n], self.mtypes, self.mparams,
+                       mstate, pre, g.vel, g.dv if kinematics else None, g.origin, g.inv_dx,
+                       g.strides, dt, self.flip, g.lo, g.hi)
 
     def step(self, dt, time):
         """Advance owned MPM particles by dt; returns the index of a failed particle or -1."""

@@ -1,0 +1,114 @@
+"""Strong scaling on 1..N ranks of an MPM scene of at least 500,000 particles.
+
+`python -m pmpmsph.bench scaling [--ranks 1 2] [--particles 500000] [--steps 100]` starts
+`mpirun -n N python -m pmpmsph.bench scaling-worker` for each N and tabulates: wall time per
+step, particle-steps/s per rank, per-phase times (slowest rank), bytes sent per rank per step
+(ghost nodes and migration) and parallel efficiency E(N) = T(1) / (N T(N)).
+
+The scene: a 2D water column (Tait, c ~ 30 m/s) collapsing in a 2 x 1 box, quadratic
+B-splines, USL, CFL 0.5; particles flow across the slab faces, so migration and the load
+balancer take part.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+from ..scene_api import Scene
+
+PHASES = ("p2g", "grid", "g2p", "halo", "migration", "balance", "output")
+
+
+def scaling_scene(particles=500_000, balance_every=25):
+    ppc = 2
+    cells_needed = particles / ppc**2
+    ny = int(math.ceil(math.sqrt(cells_needed)))          # the column is about square
+    dx = 1.0 / ny
+    nx_col = int(math.ceil(cells_needed / ny))
+    sc = Scene(2, grid=dict(origin=[0, 0], cell_size=dx, cells=[2 * ny, ny + 4]),
+               time=dict(end=10.0, cfl=0.5), gravity=[0.0, -9.81],
+               mpm=dict(shape="quadratic", transfer="usl"),
+               parallel=dict(axis="x", balance_every=balance_every))
+    sc.material("water", model="tait", rho=1000.0, kappa=1.3e5, gamma=7.0, mu=1e-3)
+    sc.body(name="water", material="water", shape="box", min=[0.0, 0.0],
+            max=[nx_col * dx, ny * dx], ppc=ppc)
+    for face in ("x-", "x+", "y-", "y+"):
+        sc.boundary(face=face, type="slip")
+    return sc
+
+
+def worker(argv):
+    import argparse
+
+    from ..parallel.distributor import Distributor
+    from ..parallel.migration import migrate
+
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--particles", type=int, default=500_000)
+    ap.add_argument("--steps", type=int, default=100)
+    ap.add_argument("--warmup", type=int, default=10)
+    ap.add_argument("--out-dir", default=None)
+    ap.add_argument("--json", required=True)
+    a = ap.parse_args(argv)
+    dist = Distributor()
+    sim = scaling_scene(a.particles).simulation(dist=dist, out_dir=a.out_dir, overwrite=True)
+    n_global = dist.sum(sim.particles.n_owned)
+    sim.run(max_steps=a.warmup)  # JIT compile / cache load, first balance
+    sim.timers.total.clear()
+    halo0 = sim.mpm.halo.bytes_sent
+    mig0 = migrate.bytes_sent
+    dist.barrier()
+    t0 = time.perf_counter()
+    sim.run(max_steps=a.steps)
+    dist.barrier()
+    wall = time.perf_counter() - t0
+    mine = {"phases": {k: sim.timers.total.get(k, 0.0) for k in PHASES},
+            "halo_bytes": sim.mpm.halo.bytes_sent - halo0,
+            "migration_bytes": migrate.bytes_sent - mig0,
+            "particles": sim.particles.n_owned}
+    everyone = dist.comm.gather(mine)
+    if dist.is_root:
+        result = {"ranks": dist.size, "particles": int(n_global), "steps": a.steps,
+                  "wall": wall, "per_rank": everyone,
+                  "faces": [int(f) for f in sim.decomposition.faces]}
+        with open(a.json, "w") as fh:
+            json.dump(result, fh, indent=1)
+    sim.close()
+    return 0
+
+
+def run(ranks, particles, steps, out):
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    mpirun = os.path.join(root, "scripts", "mpirun")
+    os.makedirs(out, exist_ok=True)
+    rows = []
+    for n in ranks:
+        path = os.path.join(out, f"scaling_{n}.json")
+        cmd = [mpirun, "-n", str(n), sys.executable, "-m", "pmpmsph.bench", "scaling-worker",
+               "--particles", str(particles), "--steps", str(steps), "--json", path,
+               "--out-dir", os.path.join(out, f"scaling_run_{n}")]
+        subprocess.run(cmd, check=True)
+        with open(path) as fh:
+            rows.append(json.load(fh))
+    t1 = rows[0]["wall"] * rows[0]["ranks"]
+    print(f"\nstrong scaling, {rows[0]['particles']} particles, {steps} steps "
+          f"(slowest rank's phase times, seconds per step)")
+    head = f"{'ranks':>5} {'s/step':>8} {'Mps/s/rank':>10} {'eff':>5} " + " ".join(
+        f"{p:>9}" for p in PHASES) + f" {'halo B/step':>11} {'migr B/step':>11}"
+    print(head)
+    for r in rows:
+        n, steps_ = r["ranks"], r["steps"]
+        per = r["per_rank"]
+        phase = {p: max(x["phases"][p] for x in per) / steps_ for p in PHASES}
+        eff = t1 / (n * r["wall"])
+        rate = r["particles"] * steps_ / r["wall"] / n / 1e6
+        halo_b = max(x["halo_bytes"] for x in per) / steps_
+        mig_b = max(x["migration_bytes"] for x in per) / steps_
+        r["efficiency"] = eff
+        print(f"{n:>5} {r['wall'] / steps_:>8.4f} {rate:>10.2f} {eff:>5.2f} " + " ".join(
+            f"{phase[p]:>9.4f}" for p in PHASES) + f" {halo_b:>11.0f} {mig_b:>11.0f}")
+    with open(os.path.join(out, "scaling.json"), "w") as fh:
+        json.dump(rows, fh, indent=1)
+    return rows
