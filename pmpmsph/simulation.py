@@ -247,8 +247,9 @@ class Simulation:
         """Advance to case.time.end (or max_steps); returns a summary dict."""
         end = self.case.time.end
         diag_every = self.case.output.diagnostics_every
-        self.write_snapshot()
-        self._after_snapshot() if self.writer else None
+        if self._last_snapshot_step != self.step_count:
+            self.write_snapshot()
+            self._after_snapshot() if self.writer else None
         if self.diag:
             self.diag.append(self.diagnostics())
         t_start = time.perf_counter()

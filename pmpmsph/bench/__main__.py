@@ -29,6 +29,8 @@ def main(argv=None):
     sc.add_argument("--particles", type=int, default=500_000)
     sc.add_argument("--steps", type=int, default=100)
     sc.add_argument("--out", default="bench_results")
+    sc.add_argument("--output-every", type=int, default=0,
+                    help="also write a snapshot every N steps (output phase)")
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "scaling-worker":
         from .scaling import worker
@@ -38,7 +40,7 @@ def main(argv=None):
     if args.command == "scaling":
         from .scaling import run
 
-        run(args.ranks, args.particles, args.steps, args.out)
+        run(args.ranks, args.particles, args.steps, args.out, args.output_every)
         return 0
 
     from .peers import install_peers, run_peer

@@ -50,10 +50,14 @@ def worker(argv):
     ap.add_argument("--steps", type=int, default=100)
     ap.add_argument("--warmup", type=int, default=10)
     ap.add_argument("--out-dir", default=None)
+    ap.add_argument("--output-every", type=int, default=0, help="snapshot every N steps")
     ap.add_argument("--json", required=True)
     a = ap.parse_args(argv)
     dist = Distributor()
-    sim = scaling_scene(a.particles).simulation(dist=dist, out_dir=a.out_dir, overwrite=True)
+    scene = scaling_scene(a.particles)
+    if a.output_every:
+        scene.set("output.every_steps", a.output_every)
+    sim = scene.simulation(dist=dist, out_dir=a.out_dir, overwrite=True)
     n_global = dist.sum(sim.particles.n_owned)
     sim.run(max_steps=a.warmup)  # JIT compile / cache load, first balance
     sim.timers.total.clear()
@@ -79,7 +83,7 @@ def worker(argv):
     return 0
 
 
-def run(ranks, particles, steps, out):
+def run(ranks, particles, steps, out, output_every=0):
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     mpirun = os.path.join(root, "scripts", "mpirun")
     os.makedirs(out, exist_ok=True)
@@ -87,8 +91,10 @@ def run(ranks, particles, steps, out):
     for n in ranks:
         path = os.path.join(out, f"scaling_{n}.json")
         cmd = [mpirun, "-n", str(n), sys.executable, "-m", "pmpmsph.bench", "scaling-worker",
-               "--particles", str(particles), "--steps", str(steps), "--json", path,
-               "--out-dir", os.path.join(out, f"scaling_run_{n}")]
+               "--particles", str(particles), "--steps", str(steps), "--json", path]
+        if output_every:
+            cmd += ["--out-dir", os.path.join(out, f"scaling_run_{n}"), "--output-every",
+                    str(output_every)]
         subprocess.run(cmd, check=True)
         with open(path) as fh:
             rows.append(json.load(fh))

@@ -290,7 +290,7 @@ def case_from_dict(data, name="case", text=""):
     if not isinstance(fields, list) or not all(isinstance(f, str) for f in fields):
         raise ConfigError(ot.key("fields"), "expected a list of field names")
     output = OutputSpec(every=every, every_steps=every_steps,
-                        diagnostics_every=ot.number("diagnostics_every", 1, integer=True, min=1),
+                        diagnostics_every=ot.number("diagnostics_every", 10, integer=True, min=1),
                         fields=tuple(fields), folder=ot.string("folder", "output"))
     ot.finish()
     pt = root.sub("parallel", {})

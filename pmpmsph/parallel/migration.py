@@ -8,6 +8,7 @@ the slab is wrong), decided collectively so no rank waits forever.
 import numpy as np
 
 from ..errors import RunError
+from ..kernels.partition import slab_leavers
 
 TAG_COUNT = 21
 TAG_DATA = 22
@@ -51,22 +52,24 @@ def migrate(decomposition, particles, step=0, hop=False):
     from mpi4py import MPI
 
     n = particles.n_owned
-    owner = dec.owner(particles["x"][:n])
+    x = particles["x"]
+    leaving = slab_leavers(x, dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells, dec.lo_cell,
+                           dec.hi_cell)
+    owner = dec.owner(x[leaving])
     if hop:
         owner = np.clip(owner, dec.rank - 1, dec.rank + 1)
-    far = np.nonzero(np.abs(owner - dec.rank) > 1)[0]
+    far = leaving[np.abs(owner - dec.rank) > 1]
     if dec.dist.any(len(far) > 0):
         gid = int(particles["gid"][far[0]]) if len(far) else -1
         raise RunError(step, gid, "particle jumped over a whole slab in one step (dt too "
                        "large for the slab width, or the particle was thrown out)")
     names = particles.fields(migrate=True)
     comm = dec.dist.comm
-    keep = owner == dec.rank
     sends = []
     for nb in (dec.left, dec.right):
         if nb is None:
             continue
-        idx = np.nonzero(owner == nb)[0]
+        idx = leaving[owner == nb]
         sends.append((nb, _pack(particles, names, idx)))
     counts = {}
     reqs = []
@@ -91,9 +94,9 @@ def migrate(decomposition, particles, step=0, hop=False):
         if buf.size:
             reqs.append(comm.Irecv(buf, source=nb, tag=TAG_DATA))
     MPI.Request.Waitall(reqs)
-    sent = int(n - keep.sum())
+    sent = len(leaving)
     migrate.bytes_sent += sum(rows.nbytes for _, rows in sends)
-    particles.remove(np.nonzero(~keep)[0])
+    particles.remove(leaving)
     received = 0
     for buf in recv_rows:
         if buf.shape[0]:

@@ -1,0 +1,28 @@
+"""Which owned particles left this rank's slab (one pass, no temporaries)."""
+import math
+
+import numpy as np
+
+from ..jit import njit
+
+
+@njit
+def slab_leavers(x, axis, origin, inv_dx, ncells, lo_cell, hi_cell):
+    """Indices of particles whose cell along `axis` lies outside [lo_cell, hi_cell).
+
+    Cells are clipped to the grid like `Decomposition.cell_of`; NaN positions count as
+    staying (the NaN check of G2P reports them).
+    """
+    n = x.shape[0]
+    out = np.empty(n, np.int64)
+    k = 0
+    for p in range(n):
+        c = math.floor((x[p, axis] - origin) * inv_dx)
+        if c < 0:
+            c = 0
+        elif c > ncells - 1:
+            c = ncells - 1
+        if c < lo_cell or c >= hi_cell:
+            out[k] = p
+            k += 1
+    return out[:k]
