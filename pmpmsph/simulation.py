@@ -26,6 +26,8 @@ log = logging.getLogger("pmpmsph")
 
 DIAG_COLUMNS = ("time", "step", "dt", "kinetic", "strain", "potential", "total",
                 "px", "py", "pz", "mass")
+#: steps between re-sorting particles by grid cell (memory locality of P2G/G2P)
+SORT_EVERY = 100
 #: fields a snapshot may hold: stored ones, plus `rho` derived from mass and volume
 DERIVED_FIELDS = ("rho",)
 
@@ -196,6 +198,9 @@ class Simulation:
             with self.timers.phase("migration"):
                 sent, _ = migrate(self.decomposition, self.particles, self.step_count)
                 self.migrated += sent
+        if self.mpm is not None and self.step_count % SORT_EVERY == 0:
+            with self.timers.phase("sort"):
+                self.mpm.sort_by_cell()
         if self.balancer is not None and self.step_count % self.balancer.every == 0:
             with self.timers.phase("balance"):
                 self.rebalance()

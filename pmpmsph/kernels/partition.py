@@ -26,3 +26,16 @@ def slab_leavers(x, axis, origin, inv_dx, ncells, lo_cell, hi_cell):
             out[k] = p
             k += 1
     return out[:k]
+
+
+@njit
+def cell_keys(x, origin, inv_dx, strides):
+    """Linear cell index of each particle (C order over the grid), for sorting by cell."""
+    n, dim = x.shape
+    keys = np.empty(n, np.int64)
+    for p in range(n):
+        k = 0
+        for a in range(dim):
+            k += int(math.floor((x[p, a] - origin[a]) * inv_dx)) * strides[a]
+        keys[p] = k
+    return keys

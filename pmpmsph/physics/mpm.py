@@ -11,6 +11,7 @@ import numpy as np
 
 from ..kernels.contact import multi_field_contact, touching_separation
 from ..kernels.mpm import g2p, grid_velocity, p2g
+from ..kernels.partition import cell_keys
 from ..kernels.shapes import SHAPE_CODES, static_tags
 from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
@@ -125,6 +126,12 @@ class MPMStage:
                        p["vol0"][:n], lp, pfield, p["mat"][:n], self.mtypes, self.mparams,
                        mstate, pre, g.vel, g.dv if kinematics else None, g.origin, g.inv_dx,
                        g.strides, dt, self.flip, g.lo, g.hi)
+
+    def sort_by_cell(self):
+        """Reorder owned particles by grid cell so P2G/G2P walk memory in grid order."""
+        g, p = self.grid, self.p
+        keys = cell_keys(p["x"], g.origin, g.inv_dx, g.strides)
+        p.take(np.argsort(keys, kind="stable"))
 
     def step(self, dt, time):
         """Advance owned MPM particles by dt; returns the index of a failed particle or -1."""
