@@ -28,3 +28,23 @@ def dam_break(shape="quadratic", transfer="usl", barrier=True, balance_every=0):
     if barrier:
         sc.boundary(box=dict(min=[6, 0], max=[6, 1]), type="slip", normal=[1, 0])
     return sc
+
+
+def loaded_bar(shape="gimp", transfer="usf"):
+    """An elastic bar across every slab face with the features a slab face must not change:
+    fixed face, traction load with a ramp, prescribed velocity, a gate, damping, gravity."""
+    sc = Scene(2, grid=dict(origin=[0, 0], length=[2.0, 0.5], cells=[40, 10]),
+               time=dict(end=1.0, dt=2e-4), gravity=[0, -9.81],
+               mpm=dict(shape=shape, transfer=transfer, damping=2.0, flip=0.9),
+               parallel=dict(axis="x", balance_every=0))
+    sc.material("steel", model="stvk", E=2e5, nu=0.3, rho=1000.0)
+    sc.body(name="bar", material="steel", shape="box", min=[0.0, 0.1], max=[1.8, 0.3], ppc=2)
+    sc.boundary(face="x-", type="fixed")
+    sc.boundary(box=dict(min=[0.0, 0.0], max=[2.0, 0.1]), type="slip", normal=[0, -1],
+                until=0.02)
+    sc.load(body="bar", box=dict(min=[1.77, 0.1], max=[1.8, 0.3]), normal="x+",
+            traction=[1e3, 0.0], ramp=0.01)
+    sc.data.setdefault("prescribed", []).append(
+        dict(body="bar", box=dict(min=[0.9, 0.1], max=[0.95, 0.3]), velocity=["free", 0.0],
+             until=0.01))
+    return sc

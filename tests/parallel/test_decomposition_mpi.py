@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from mpi_util import gathered, rel_diff, serial, world
-from scenes import dam_break, two_disks
+from scenes import dam_break, loaded_bar, two_disks
 
 pytestmark = pytest.mark.mpi
 
@@ -58,7 +58,8 @@ def test_migration_conserves_count_mass_momentum_and_gids():
 
 @pytest.mark.parametrize("scene,kwargs", [(two_disks, {}), (two_disks, {"contact": "multi"}),
                                           (dam_break, {}), (dam_break, {"shape": "cubic",
-                                                                         "transfer": "musl"})])
+                                                                         "transfer": "musl"}),
+                                          (loaded_bar, {})])
 def test_state_after_200_steps_equals_one_rank(scene, kwargs):
     dist = world()
     sim = scene(**kwargs).simulation(dist=dist)
