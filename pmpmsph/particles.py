@@ -139,6 +139,19 @@ class ParticleSet:
             arr[: len(index)] = arr[index]
         self.n_owned = self.n_total = len(index)
 
+    def append_halo(self, values):
+        """Append halo copies (rows after the owned ones); fields not given get defaults."""
+        n_new = len(next(iter(values.values()))) if values else 0
+        self.reserve(self.n_total + n_new)
+        lo, hi = self.n_total, self.n_total + n_new
+        for name, spec in self.specs.items():
+            arr = self.arrays[name]
+            if name in values:
+                arr[lo:hi] = values[name]
+            else:
+                self._fill(spec, arr[lo:hi])
+        self.n_total = hi
+
     def drop_halo(self):
         self.n_total = self.n_owned
 
