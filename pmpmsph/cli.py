@@ -82,8 +82,7 @@ def cmd_run(args, dist):
     finally:
         sim.close()
     t = summary["timers"]
-    rate = summary["particles"] * summary["steps"] / max(t.get("run", 0) + t.get("jit_warmup", 0),
-                                                         1e-9)
+    rate = summary["particles"] * summary["steps"] / max(t.get("run", 0), 1e-9)
     log.info("done: t = %.6g after %d steps; setup %.2f s, JIT warm-up %.2f s, run %.2f s "
              "(%.3g particle-steps/s); total %.2f s", summary["time"], summary["steps"],
              t.get("setup", 0), t.get("jit_warmup", 0), t.get("run", 0), rate,

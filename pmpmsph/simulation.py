@@ -32,6 +32,11 @@ SORT_EVERY = 100
 DERIVED_FIELDS = ("rho",)
 
 
+def _hms(seconds):
+    seconds = int(round(seconds))
+    return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+
+
 class Simulation:
     def __init__(self, case, dist=None, out_dir=None, overwrite=False, write_output=True):
         t0 = time.perf_counter()
@@ -58,6 +63,8 @@ class Simulation:
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
+        self._sums = np.zeros(7)
+        self._compile_kernels()
         if self.balancer is not None:  # seeding used equal slabs: balance before step 1
             with self.timers.phase("balance"):
                 self.rebalance()
@@ -65,14 +72,56 @@ class Simulation:
         self.dt = self._initial_dt()
         self.out_dir = out_dir
         self.writer = self.diag = None
-        self._sums = np.zeros(7)
         self._last_snapshot_step = -1
         fault = os.environ.get("PMPMSPH_INJECT_FAULT")  # "rank:step", for the fault tests
         self._fault = tuple(int(v) for v in fault.split(":")) if fault else None
         self._next_snapshot_time = 0.0
         if write_output and out_dir is not None:
             self._open_output(overwrite)
-        self.timers.add("setup", time.perf_counter() - t0)
+        self.timers.add("setup", time.perf_counter() - t0 - self.timers.total["jit_warmup"])
+
+    # -- JIT ----------------------------------------------------------------------------------
+    def _compile_kernels(self):
+        """Compile (or load from the cache) every kernel this scene uses, before step 1.
+
+        Rank 0 goes first and fills the shared on-disk cache; the other ranks then load from
+        it, so N ranks never compile the same kernel N times nor race on the cache files.
+        The kernels run on zero particles with the halo exchanges off, which compiles exactly
+        the signatures the real steps use. Reported apart as the JIT warm-up.
+        """
+        t0 = time.perf_counter()
+        before = dict(self.timers.total)
+        for turn in (0, 1):
+            if (self.dist.rank == 0) == (turn == 0):
+                self._dry_step()
+            self.dist.barrier()
+        self.timers.total.clear()
+        self.timers.total.update(before)  # the dry step's phases are not run time
+        self.timers.add("jit_warmup", time.perf_counter() - t0)
+
+    def _dry_step(self):
+        from .kernels.partition import cell_keys, slab_leavers
+
+        p = self.particles
+        n_owned, n_total = p.n_owned, p.n_total
+        p.n_owned = p.n_total = 0
+        try:
+            if self.mpm is not None:
+                with self.mpm.detached():
+                    self.mpm.step(1e-30, 0.0)
+                g = self.mpm.grid
+                cell_keys(p["x"], g.origin, g.inv_dx, g.strides)
+            mtypes, mparams = self.materials
+            mstate = p["mstate"] if "mstate" in p else np.zeros((0, 0))
+            particle_sums(self.dim, p["x"], p["v"], p["mass"], p["vol0"], p["F"], p["mat"],
+                          mtypes, mparams, mstate, self.gravity, self._sums)
+            max_signal_speed(self.dim, p["v"], p["F"], p["mat"], mtypes, mparams)
+            if self.decomposition is not None:
+                dec = self.decomposition
+                slab_leavers(p["x"], dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells,
+                             dec.lo_cell, dec.hi_cell)
+        finally:
+            p.n_owned, p.n_total = n_owned, n_total
 
     # -- time step --------------------------------------------------------------------------
     def signal_speed(self):
@@ -259,17 +308,15 @@ class Simulation:
             self.diag.append(self.diagnostics())
         t_start = time.perf_counter()
         steps0 = self.step_count
-        warm = None
+        n_global = int(self.dist.sum(self.particles.n_owned))
+        t0_sim = self.time
         try:
             while self.time < end - 1e-6 * self.dt:
                 if max_steps is not None and self.step_count - steps0 >= max_steps:
                     break
                 if self.time + self.dt > end:
                     self.dt = end - self.time
-                ts = time.perf_counter()
                 self.step()
-                if warm is None:  # the first step pays for JIT compilation (or cache loading)
-                    warm = time.perf_counter() - ts
                 if self.diag and self.step_count % diag_every == 0:
                     self.diag.append(self.diagnostics())
                 if self.writer and self._scheduled_snapshot():
@@ -279,9 +326,13 @@ class Simulation:
                     on_step(self)
                 if progress_every and self.dist.is_root and self.step_count % progress_every == 0:
                     el = time.perf_counter() - t_start
-                    rate = self.particles.n_owned * (self.step_count - steps0) / max(el, 1e-9)
-                    log.info("t=%.6g step=%d dt=%.3g %.3g particle-steps/s", self.time,
-                             self.step_count, self.dt, rate)
+                    done = self.step_count - steps0
+                    rate = n_global * done / max(el, 1e-9)
+                    eta = el / max(self.time - t0_sim, 1e-300) * (end - self.time)
+                    if max_steps is not None:
+                        eta = min(eta, el / done * (max_steps - done))
+                    log.info("t=%.6g step=%d dt=%.3g %.3g particle-steps/s ETA %s", self.time,
+                             self.step_count, self.dt, rate, _hms(eta))
         except RunError:
             self.write_snapshot()
             self.close()
@@ -291,11 +342,10 @@ class Simulation:
         if self.diag and self.step_count % diag_every != 0:
             self.diag.append(self.diagnostics())
         wall = time.perf_counter() - t_start
-        self.timers.add("jit_warmup", warm or 0.0)
-        self.timers.add("run", wall - (warm or 0.0))
+        self.timers.add("run", wall)
         n_steps = self.step_count - steps0
-        return {"steps": n_steps, "time": self.time, "wall": wall, "warmup": warm or 0.0,
-                "particles": int(self.dist.sum(self.particles.n_owned)),
+        return {"steps": n_steps, "time": self.time, "wall": wall,
+                "warmup": self.timers.total.get("jit_warmup", 0.0), "particles": n_global,
                 "timers": self.timers.as_dict()}
 
     def close(self):

@@ -27,7 +27,6 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv
     compile-time dimension and shape function (`static_tags`).
     """
     dim = len(dim_tag)
-    kind = len(kind_tag) - 1
     st = np.zeros(3, np.int64)
     st[:dim] = strides
     n = x.shape[0]
@@ -41,9 +40,9 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv
             lp2 = lp[p, min(2, dim - 1)]
         if pfield is not None:
             fld = pfield[p]
-        b0, n0, w0, d0 = axis_weights(kind, dim, 0, x[p], origin, inv_dx, lp0)
-        b1, n1, w1, d1 = axis_weights(kind, dim, 1, x[p], origin, inv_dx, lp1)
-        b2, n2, w2, d2 = axis_weights(kind, dim, 2, x[p], origin, inv_dx, lp2)
+        b0, n0, w0, d0 = axis_weights(kind_tag, dim, 0, x[p], origin, inv_dx, lp0)
+        b1, n1, w1, d1 = axis_weights(kind_tag, dim, 1, x[p], origin, inv_dx, lp1)
+        b2, n2, w2, d2 = axis_weights(kind_tag, dim, 2, x[p], origin, inv_dx, lp2)
         base = b0 * st[0] + b1 * st[1] + b2 * st[2]
         m = mass[p]
         vo = vol[p] * inv_dx  # grad N = dw * inv_dx, folded in here
@@ -187,7 +186,6 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, 
     the material type at compile time when all particles share it (`material_tag`).
     """
     dim = len(dim_tag)
-    kind = len(kind_tag) - 1
     st = np.zeros(3, np.int64)
     st[:dim] = strides
     L = np.zeros((3, 3))
@@ -204,9 +202,9 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, 
             lp2 = lp[p, min(2, dim - 1)]
         if pfield is not None:
             fld = pfield[p]
-        b0, n0, w0, d0 = axis_weights(kind, dim, 0, x[p], origin, inv_dx, lp0)
-        b1, n1, w1, d1 = axis_weights(kind, dim, 1, x[p], origin, inv_dx, lp1)
-        b2, n2, w2, d2 = axis_weights(kind, dim, 2, x[p], origin, inv_dx, lp2)
+        b0, n0, w0, d0 = axis_weights(kind_tag, dim, 0, x[p], origin, inv_dx, lp0)
+        b1, n1, w1, d1 = axis_weights(kind_tag, dim, 1, x[p], origin, inv_dx, lp1)
+        b2, n2, w2, d2 = axis_weights(kind_tag, dim, 2, x[p], origin, inv_dx, lp2)
         base = b0 * st[0] + b1 * st[1] + b2 * st[2]
         vp0 = vp1 = vp2 = 0.0  # sum N v_new
         dv0 = dv1 = dv2 = 0.0  # sum N dv

@@ -12,6 +12,8 @@ import math
 
 import numpy as np
 
+from numba.extending import overload
+
 from ..jit import njit
 
 LINEAR, GIMP, QUADRATIC, CUBIC = 0, 1, 2, 3
@@ -59,29 +61,38 @@ def _gimp(r, lp):
 
 
 @njit(inline="always")
-def weights_1d(kind, X, lp):
-    """(base, w, dw): weights w[k] and derivatives dw[k] (per cell unit) of nodes base + k.
+def weights_linear(X, lp):
+    """Linear hat (thesis eqs. 63-67): (base, w, dw) for nodes base, base + 1."""
+    base = math.floor(X)
+    f = X - base
+    return base, (1.0 - f, f, 0.0, 0.0), (-1.0, 1.0, 0.0, 0.0)
 
-    w and dw are 4-tuples (unused entries 0) so that they live in registers, not memory.
-    """
-    if kind == LINEAR:
-        base = math.floor(X)
-        f = X - base
-        return base, (1.0 - f, f, 0.0, 0.0), (-1.0, 1.0, 0.0, 0.0)
-    if kind == QUADRATIC:
-        base = math.floor(X - 0.5)
-        f = X - base  # in [0.5, 1.5)
-        return (base, (0.5 * (1.5 - f) ** 2, 0.75 - (f - 1.0) ** 2, 0.5 * (f - 0.5) ** 2, 0.0),
-                (f - 1.5, -2.0 * (f - 1.0), f - 0.5, 0.0))
-    if kind == CUBIC:
-        base = math.floor(X) - 1
-        f = X - base  # in [1, 2)
-        w0, d0 = _cubic(f)
-        w1, d1 = _cubic(f - 1.0)
-        w2, d2 = _cubic(f - 2.0)
-        w3, d3 = _cubic(f - 3.0)
-        return base, (w0, w1, w2, w3), (d0, d1, d2, d3)
-    base = math.floor(X - 0.5)  # GIMP
+
+@njit(inline="always")
+def weights_quadratic(X, lp):
+    """Quadratic B-spline: nodes base .. base + 2."""
+    base = math.floor(X - 0.5)
+    f = X - base  # in [0.5, 1.5)
+    return (base, (0.5 * (1.5 - f) ** 2, 0.75 - (f - 1.0) ** 2, 0.5 * (f - 0.5) ** 2, 0.0),
+            (f - 1.5, -2.0 * (f - 1.0), f - 0.5, 0.0))
+
+
+@njit(inline="always")
+def weights_cubic(X, lp):
+    """Cubic B-spline: nodes base .. base + 3."""
+    base = math.floor(X) - 1
+    f = X - base  # in [1, 2)
+    w0, d0 = _cubic(f)
+    w1, d1 = _cubic(f - 1.0)
+    w2, d2 = _cubic(f - 2.0)
+    w3, d3 = _cubic(f - 3.0)
+    return base, (w0, w1, w2, w3), (d0, d1, d2, d3)
+
+
+@njit(inline="always")
+def weights_gimp(X, lp):
+    """Uniform GIMP with particle half-width lp (cell units): nodes base .. base + 2."""
+    base = math.floor(X - 0.5)
     f = X - base
     w0, d0 = _gimp(f, lp)
     w1, d1 = _gimp(f - 1.0, lp)
@@ -89,8 +100,41 @@ def weights_1d(kind, X, lp):
     return base, (w0, w1, w2, 0.0), (d0, d1, d2, 0.0)
 
 
+_WEIGHTS = {LINEAR: weights_linear, GIMP: weights_gimp, QUADRATIC: weights_quadratic,
+            CUBIC: weights_cubic}
+
+
+@njit
+def weights_1d(kind, X, lp):
+    """(base, w, dw) for a runtime shape-function code: weights w[k] and derivatives dw[k]
+    (per cell unit) of nodes base + k, as 4-tuples (unused entries 0) that live in registers.
+    The kernels use `weights_tagged`, which fixes the kind at compile time."""
+    if kind == LINEAR:
+        return weights_linear(X, lp)
+    if kind == QUADRATIC:
+        return weights_quadratic(X, lp)
+    if kind == CUBIC:
+        return weights_cubic(X, lp)
+    return weights_gimp(X, lp)
+
+
+def weights_tagged(kind_tag, X, lp):
+    """`weights_1d` with the kind given by `len(kind_tag) - 1`, chosen while Numba types the
+    caller so only that shape function is compiled (Python body: NUMBA_DISABLE_JIT=1)."""
+    return _WEIGHTS[len(kind_tag) - 1](X, lp)
+
+
+@overload(weights_tagged, inline="always")
+def _weights_tagged_typed(kind_tag, X, lp):
+    fn = _WEIGHTS[len(kind_tag.types) - 1]
+
+    def impl(kind_tag, X, lp):
+        return fn(X, lp)
+    return impl
+
+
 @njit(inline="always")
-def axis_weights(kind, dim, a, xp, origin, inv_dx, lp):
+def axis_weights(kind_tag, dim, a, xp, origin, inv_dx, lp):
     """(base, count, w, dw) along axis `a`; axes beyond `dim` get one node of weight 1.
 
     Letting the unused axes have a single node of weight 1 and derivative 0 lets one triple
@@ -98,8 +142,8 @@ def axis_weights(kind, dim, a, xp, origin, inv_dx, lp):
     """
     if a < dim:
         X = (xp[a] - origin[a]) * inv_dx + 2.0  # + GRID_PAD
-        base, w, dw = weights_1d(kind, X, lp)
-        return base, stencil_width(kind), w, dw
+        base, w, dw = weights_tagged(kind_tag, X, lp)
+        return base, stencil_width(len(kind_tag) - 1), w, dw
     return 0, 1, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0)
 
 

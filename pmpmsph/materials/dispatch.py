@@ -27,6 +27,7 @@ Hartmann-Neff/Maxwell; ``E/rho0`` for the 1D bar since lambda = 0, mu = E/2 ther
   (seed 003, eq. 50).
 """
 import numpy as np
+from numba.extending import overload
 
 from ..jit import njit
 from .codes import HARTMANN_NEFF, LINEAR_ELASTIC, MAXWELL, NEO_HOOKEAN, STVK, TAIT_FLUID
@@ -68,32 +69,39 @@ def compute_stress(mtype, F, L, dt, state, par, sigma):
                 sigma[i, j] = np.nan
 
 
-@njit(inline="always")
+_STRESS_BY_CODE = {NEO_HOOKEAN: stress_neo_hookean, TAIT_FLUID: stress_tait_fluid,
+                   LINEAR_ELASTIC: stress_linear_elastic, STVK: stress_stvk,
+                   HARTMANN_NEFF: stress_hartmann_neff, MAXWELL: stress_maxwell}
+
+
 def compute_stress_tagged(mtag, mtype, F, L, dt, state, par, sigma):
     """`compute_stress` with the type fixed at compile time when `mtag` is not empty.
 
     `mtag = (0,) * (code + 1)` (see `material_tag`) names one material type for every particle
-    of a kernel call; Numba then compiles only that model's code. A runtime switch over all
-    six models, inlined in a particle loop, costs ~4x the stress update itself (the compiled
-    loop keeps reference-count traffic on the array arguments), so the switch is used only
-    when a scene mixes material types (`mtag = ()`).
+    of a kernel call. The Numba overload below picks that model while *typing* the caller, so
+    only its code is compiled and inlined: a runtime switch over all six models, inlined in a
+    particle loop, costs ~4x the stress update itself and multiplies compile time. The switch
+    is used only when a scene mixes material types (`mtag = ()`). This Python body is what
+    runs under NUMBA_DISABLE_JIT=1.
     """
     if len(mtag) == 0:
         compute_stress(mtype, F, L, dt, state, par, sigma)
-        return
-    code = len(mtag) - 1
-    if code == NEO_HOOKEAN:
-        stress_neo_hookean(F, L, dt, state, par, sigma)
-    elif code == TAIT_FLUID:
-        stress_tait_fluid(F, L, dt, state, par, sigma)
-    elif code == LINEAR_ELASTIC:
-        stress_linear_elastic(F, L, dt, state, par, sigma)
-    elif code == STVK:
-        stress_stvk(F, L, dt, state, par, sigma)
-    elif code == HARTMANN_NEFF:
-        stress_hartmann_neff(F, L, dt, state, par, sigma)
-    elif code == MAXWELL:
-        stress_maxwell(F, L, dt, state, par, sigma)
+    else:
+        _STRESS_BY_CODE[len(mtag) - 1](F, L, dt, state, par, sigma)
+
+
+@overload(compute_stress_tagged, inline="always")
+def _compute_stress_tagged_typed(mtag, mtype, F, L, dt, state, par, sigma):
+    count = len(mtag.types)
+    if count == 0:
+        def switch(mtag, mtype, F, L, dt, state, par, sigma):
+            compute_stress(mtype, F, L, dt, state, par, sigma)
+        return switch
+    model = _STRESS_BY_CODE[count - 1]
+
+    def fixed(mtag, mtype, F, L, dt, state, par, sigma):
+        model(F, L, dt, state, par, sigma)
+    return fixed
 
 
 def material_tag(codes):

@@ -108,19 +108,14 @@ def _source_digest():
 def configure_numba_cache():
     """Point Numba's cache at a directory per source version and per rank.
 
-    Per rank, so that ranks compiling at once never race on the same files; per source
-    version, so that an edited callee never leaves a stale compiled caller behind. Must run
-    before numba compiles anything; the rank is read from the launcher's environment so that
-    mpi4py need not be imported first. An explicit NUMBA_CACHE_DIR is used as the base.
+    Per source version, so that an edited callee never leaves a stale compiled caller behind
+    (Numba only watches a kernel's own file). All ranks share it: `Simulation` compiles on
+    rank 0 first and the other ranks then only read (see `Simulation._compile_kernels`).
+    Must run before numba compiles anything. An explicit NUMBA_CACHE_DIR is the base.
     """
     if os.environ.get("PMPMSPH_CACHE_SET"):
         return
-    rank = "serial"
-    for var in ("OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK", "MV2_COMM_WORLD_RANK"):
-        if var in os.environ:
-            rank = "rank" + os.environ[var]
-            break
     base = os.environ.get("NUMBA_CACHE_DIR") or os.path.join(
         os.path.expanduser("~"), ".cache", "pmpmsph-numba")
-    os.environ["NUMBA_CACHE_DIR"] = os.path.join(base, _source_digest(), rank)
+    os.environ["NUMBA_CACHE_DIR"] = os.path.join(base, _source_digest())
     os.environ["PMPMSPH_CACHE_SET"] = "1"

@@ -7,6 +7,8 @@ MUSL (Sulsky):      P2G(m, mv, f) -> grid solve + BCs -> G2P(v, x) -> P2G(m, mv)
                     new particle velocities -> grid v + BCs -> G2P(L, F, sigma)
 Multi-field contact (Bardenhagen et al. 2001) runs after every grid solve when enabled.
 """
+from contextlib import contextmanager
+
 import numpy as np
 
 from ..kernels.contact import multi_field_contact, touching_separation
@@ -37,6 +39,7 @@ class MPMStage:
         self.friction = spec.friction
         nfields = len(case.bodies) if self.multi else 1
         self.nfields = nfields
+        self.halo_enabled = True
         self.timers = timers if timers is not None else Timers()
         self.set_decomposition(decomposition)
         self.contact_gap = self._contact_gap() if self.multi else 0.0
@@ -54,6 +57,15 @@ class MPMStage:
                          node_range=(decomposition.axis, lo, hi))
         self.bcs = GridBoundaries(self.case.boundaries, self.grid)
         self.halo = GridHalo(decomposition, self.grid)
+
+    @contextmanager
+    def detached(self):
+        """No ghost-node exchanges inside (the JIT warm-up runs on one rank at a time)."""
+        self.halo_enabled = False
+        try:
+            yield
+        finally:
+            self.halo_enabled = True
 
     def _contact_gap(self):
         """Displacement-check threshold of multi-field contact for this shape function."""
@@ -102,8 +114,9 @@ class MPMStage:
         sums = [g.mass, g.mom] + ([g.force] if with_force else [])
         if self.multi:
             sums += [g.mgrad, g.mx]
-        with t.phase("halo"):
-            self.halo.reduce(sums)
+        if self.halo_enabled:
+            with t.phase("halo"):
+                self.halo.reduce(sums)
 
     def _solve(self, dt, time, with_force):
         g = self.grid
@@ -114,8 +127,9 @@ class MPMStage:
                 multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv,
                                     self.friction, self.mass_cutoff, self.contact_gap)
             self.bcs.apply(time, g.vel, g.dv)
-        with self.timers.phase("halo"):
-            self.halo.broadcast([g.vel, g.dv])
+        if self.halo_enabled:
+            with self.timers.phase("halo"):
+                self.halo.broadcast([g.vel, g.dv])
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p
