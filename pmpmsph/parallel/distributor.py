@@ -90,18 +90,25 @@ class Distributor:
         raise SystemExit(code)
 
 
+#: where every compiled function lives (kernels may only import numpy, numba, math and these)
+JIT_SOURCES = ("kernels", "materials", "jit.py")
+
+
 def _source_digest():
-    """Hash of the package's sources: Numba's cache only notices changes in a kernel's own
+    """Hash of the compiled sources: Numba's cache only notices changes in a kernel's own
     file, not in the kernels it calls, so the cache directory is keyed by all of them."""
     import hashlib
 
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     h = hashlib.sha1()
-    for folder, _, files in sorted(os.walk(root)):
+    for entry in JIT_SOURCES:
+        path = os.path.join(root, entry)
+        files = [path] if path.endswith(".py") else sorted(
+            os.path.join(folder, name) for folder, _, names in os.walk(path)
+            for name in names if name.endswith(".py"))
         for name in sorted(files):
-            if name.endswith(".py"):
-                with open(os.path.join(folder, name), "rb") as fh:
-                    h.update(fh.read())
+            with open(name, "rb") as fh:
+                h.update(fh.read())
     return h.hexdigest()[:12]
 
 
