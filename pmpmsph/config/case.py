@@ -72,7 +72,8 @@ class BoundarySpec:
 
 @dataclass(frozen=True)
 class LoadSpec:
-    """Traction on the particles of `body` inside `region`, ramped linearly over `ramp`."""
+    """Traction on the particles of `body` inside `region`, ramped linearly over `ramp`
+    (a surface `stress` in the case file is turned into the traction sigma . n)."""
     body: str
     region: Region
     traction: tuple

@@ -195,11 +195,27 @@ def _load(t, dim, body_names):
     if body not in body_names:
         raise ConfigError(t.key("body"), f"unknown body {body!r}")
     region = _region(t, dim)
-    traction = t.vector("traction", dim)
-    normal = t.string("normal", choices=FACES[: 2 * dim])
+    if t.has("stress") == t.has("traction"):
+        raise ConfigError(t.key("traction"), "give either traction or stress (with normal)")
     ramp = t.number("ramp", 0.0, min=0.0)
+    normal = t.string("normal", choices=FACES[: 2 * dim])
+    if t.has("stress"):  # a stress on the surface acts as the traction sigma . n
+        sigma = _voigt_matrix(t.vector("stress", _voigt_len(dim)), dim)
+        n = _face_normal(normal, dim)
+        traction = tuple(sum(sigma[i][j] * n[j] for j in range(dim)) for i in range(dim))
+    else:
+        traction = t.vector("traction", dim)
     t.finish()
     return LoadSpec(body, region, traction, normal, ramp, t.path)
+
+
+def _voigt_matrix(v, dim):
+    """Voigt order (xx; xx yy xy; xx yy zz yz xz xy) -> nested lists dim x dim."""
+    if dim == 1:
+        return [[v[0]]]
+    if dim == 2:
+        return [[v[0], v[2]], [v[2], v[1]]]
+    return [[v[0], v[5], v[4]], [v[5], v[1], v[3]], [v[4], v[3], v[2]]]
 
 
 def _prescribed(t, dim, body_names):
