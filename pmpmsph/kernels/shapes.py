@@ -32,7 +32,7 @@ def stencil_width(kind):
     return 3
 
 
-@njit(inline="always")
+@njit  # scalar in, scalars out: LLVM inlines it (Numba-IR inlining trips its SSA check)
 def _cubic(r):
     """Cubic B-spline and its derivative at signed distance r (cell units)."""
     a = abs(r)
@@ -45,7 +45,7 @@ def _cubic(r):
     return 0.0, 0.0
 
 
-@njit(inline="always")
+@njit
 def _gimp(r, lp):
     """Uniform GIMP weight and derivative at signed distance r for half-width lp <= 1/2."""
     a = abs(r)
