@@ -85,12 +85,13 @@ def worker(argv):
 
 def run(ranks, particles, steps, out, output_every=0):
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    mpirun = os.path.join(root, "scripts", "mpirun")
+    # on a cluster: PMPMSPH_MPIRUN="srun --ntasks" (see slurm/); here scripts/mpirun -n
+    launcher = os.environ.get("PMPMSPH_MPIRUN", os.path.join(root, "scripts", "mpirun") + " -n")
     os.makedirs(out, exist_ok=True)
     rows = []
     for n in ranks:
         path = os.path.join(out, f"scaling_{n}.json")
-        cmd = [mpirun, "-n", str(n), sys.executable, "-m", "pmpmsph.bench", "scaling-worker",
+        cmd = [*launcher.split(), str(n), sys.executable, "-m", "pmpmsph.bench", "scaling-worker",
                "--particles", str(particles), "--steps", str(steps), "--json", path]
         if output_every:
             cmd += ["--out-dir", os.path.join(out, f"scaling_run_{n}"), "--output-every",
