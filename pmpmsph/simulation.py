@@ -28,6 +28,8 @@ DIAG_COLUMNS = ("time", "step", "dt", "kinetic", "strain", "potential", "total",
                 "px", "py", "pz", "mass")
 #: steps between re-sorting particles by grid cell (memory locality of P2G/G2P)
 SORT_EVERY = 100
+#: below this many particles per rank everything is in cache and sorting buys nothing
+SORT_MIN_PARTICLES = 20_000
 #: fields a snapshot may hold: stored ones, plus `rho` derived from mass and volume
 DERIVED_FIELDS = ("rho",)
 
@@ -247,7 +249,8 @@ class Simulation:
             with self.timers.phase("migration"):
                 sent, _ = migrate(self.decomposition, self.particles, self.step_count)
                 self.migrated += sent
-        if self.mpm is not None and self.step_count % SORT_EVERY == 0:
+        if (self.mpm is not None and self.step_count % SORT_EVERY == 0
+                and self.particles.n_owned >= SORT_MIN_PARTICLES):
             with self.timers.phase("sort"):
                 self.mpm.sort_by_cell()
         if self.balancer is not None and self.step_count % self.balancer.every == 0:

@@ -104,7 +104,7 @@ class TimeSpec:
 class OutputSpec:
     every: Optional[float] = None       # snapshot interval in time
     every_steps: Optional[int] = None   # or in steps
-    diagnostics_every: int = 10         # steps between diagnostics rows
+    diagnostics_every: int = 1          # steps between diagnostics rows
     fields: tuple = ("gid", "body", "x", "v", "mass", "vol", "rho", "sigma", "F")
     folder: str = "output"
 

@@ -34,16 +34,22 @@ def parse_set(assignments):
 
 
 def apply_overrides(data, overrides):
+    """Set dotted keys (`a.b`, `bodies[0].ppc`) in the raw case dict."""
     for key, val in overrides:
         node = data
         parts = key.split(".")
-        for part in parts[:-1]:
-            if "[" in part:
-                name, idx = part[:-1].split("[")
-                node = node[name][int(idx)]
-            else:
-                node = node.setdefault(part, {})
-        node[parts[-1]] = val
+        try:
+            for part in parts[:-1]:
+                if "[" in part:
+                    name, idx = part[:-1].split("[")
+                    node = node[name][int(idx)]
+                else:
+                    node = node.setdefault(part, {})
+            if not isinstance(node, dict):
+                raise TypeError
+            node[parts[-1]] = val
+        except (KeyError, IndexError, ValueError, TypeError, AttributeError):
+            raise ConfigError(key, "--set names no value that can be set here") from None
     return data
 
 
@@ -306,7 +312,7 @@ def case_from_dict(data, name="case", text=""):
     if not isinstance(fields, list) or not all(isinstance(f, str) for f in fields):
         raise ConfigError(ot.key("fields"), "expected a list of field names")
     output = OutputSpec(every=every, every_steps=every_steps,
-                        diagnostics_every=ot.number("diagnostics_every", 10, integer=True, min=1),
+                        diagnostics_every=ot.number("diagnostics_every", 1, integer=True, min=1),
                         fields=tuple(fields), folder=ot.string("folder", "output"))
     ot.finish()
     pt = root.sub("parallel", {})
