@@ -1,1 +1,3 @@
-"""Benchmarks: throughput against peers, scaling, speed against error (`python -m pmpmsph.bench`)."""
+"""Benchmarks: throughput against peers, scaling, speed against error.
+
+Run as `python -m pmpmsph.bench`."""

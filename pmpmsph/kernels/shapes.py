@@ -10,8 +10,6 @@ All coordinates here are in cell units: X = (x - origin)/dx + pad, so node i sit
 """
 import math
 
-import numpy as np
-
 from numba.extending import overload
 
 from ..jit import njit

@@ -51,7 +51,6 @@ def migrate(decomposition, particles, step=0, hop=False):
         return 0, 0
     from mpi4py import MPI
 
-    n = particles.n_owned
     x = particles["x"]
     leaving = slab_leavers(x, dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells, dec.lo_cell,
                            dec.hi_cell)
