@@ -171,6 +171,36 @@ def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, gvel, gdv):
 
 
 @njit
+def mirror_grid_bc(dim, outside, inside, kind, normal, gvel, gdv):
+    """Velocities of the nodes beyond a wall as the mirror image of those inside it.
+
+    Wide stencils (GIMP, B-splines) give a particle near a wall weight on nodes one or two
+    cells inside it, so constraining the wall nodes alone does not stop it crossing. With the
+    outside nodes set to the reflection of the inside ones, the interpolated normal velocity
+    is odd about the wall and vanishes on it, for any stencil: slip reflects the normal
+    component (v -> v - 2 (v.n) n), fixed reverses the whole velocity. Same for dv.
+    """
+    nf = gvel.shape[0]
+    for j in range(outside.shape[0]):
+        o = outside[j]
+        i = inside[j]
+        for f in range(nf):
+            if kind == FIXED:
+                for a in range(dim):
+                    gvel[f, o, a] = -gvel[f, i, a]
+                    gdv[f, o, a] = -gdv[f, i, a]
+            else:
+                vn = 0.0
+                dn = 0.0
+                for a in range(dim):
+                    vn += gvel[f, i, a] * normal[a]
+                    dn += gdv[f, i, a] * normal[a]
+                for a in range(dim):
+                    gvel[f, o, a] = gvel[f, i, a] - 2.0 * vn * normal[a]
+                    gdv[f, o, a] = gdv[f, i, a] - 2.0 * dn * normal[a]
+
+
+@njit
 def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, mparams,
         mstate,
         prestress, gvel, gdv, origin, inv_dx, strides, dt, flip, lo, hi):

@@ -5,7 +5,7 @@ A boundary with `until = t` is a gate: it acts while time < t and is then remove
 """
 import numpy as np
 
-from ..kernels.mpm import BC_CODES, apply_grid_bc
+from ..kernels.mpm import BC_CODES, FRICTION, apply_grid_bc, mirror_grid_bc
 
 
 class GridBoundaries:
@@ -22,6 +22,11 @@ class GridBoundaries:
             normal = np.zeros(3)
             normal[:dim] = spec.normal if spec.normal else 0.0
             self.parts.append((nodes, BC_CODES[spec.kind], normal, spec.friction))
+        # fixed and slip faces also mirror the nodes beyond them (see `mirror_grid_bc`);
+        # one-sided friction walls let material leave, so they do not
+        self.mirrors = [grid.mirror_pairs(spec.region.face)
+                        if spec.region.face and BC_CODES[spec.kind] != FRICTION else None
+                        for spec in specs]
         self.active_key = None
         self._arrays = None
 
@@ -46,3 +51,7 @@ class GridBoundaries:
         node, kind, normal, mu = self._arrays
         if len(node):
             apply_grid_bc(self.grid.dim, node, kind, normal, mu, vel, dv)
+        for j in active:
+            if self.mirrors[j] is not None and len(self.mirrors[j][0]):
+                _, code, normal, _ = self.parts[j]
+                mirror_grid_bc(self.grid.dim, *self.mirrors[j], code, normal, vel, dv)

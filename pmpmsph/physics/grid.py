@@ -84,6 +84,22 @@ class Grid:
             sel = idx >= self.pad + self.spec.cells[axis]
         return np.nonzero(sel)[0].astype(np.int64)
 
+    def mirror_pairs(self, face):
+        """(outside, inside): flat indices of the local nodes beyond a domain face and of
+        their mirror images across it, for the pairs whose image is also local."""
+        axis = "xyz".index(face[0])
+        gidx = self.global_index()
+        wall = self.pad if face[1] == "-" else self.pad + self.spec.cells[axis]
+        i = gidx[axis]
+        outside = (i < wall) if face[1] == "-" else (i > wall)
+        mirror = gidx.copy()
+        mirror[axis] = 2 * wall - i
+        local = mirror - self.offset[:, None]
+        shape = np.array(self.shape)[:, None]
+        ok = outside & np.all((local >= 0) & (local < shape), axis=0)
+        inside = np.ravel_multi_index(tuple(local[:, ok]), self.shape)
+        return np.nonzero(ok)[0].astype(np.int64), inside.astype(np.int64)
+
     def nodes_in_box(self, lo, hi):
         xs = self.node_coords()
         tol = 1e-9 * self.dx
