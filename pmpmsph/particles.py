@@ -106,15 +106,7 @@ class ParticleSet:
         n_new = len(next(iter(values.values())))
         if self.n_total != self.n_owned:
             raise RuntimeError("drop halo particles before appending owned ones")
-        self.reserve(self.n_owned + n_new)
-        lo, hi = self.n_owned, self.n_owned + n_new
-        for name, spec in self.specs.items():
-            arr = self.arrays[name]
-            if name in values:
-                arr[lo:hi] = values[name]
-            else:
-                self._fill(spec, arr[lo:hi])
-        self.n_owned = self.n_total = hi
+        self.n_owned = self.n_total = self._write_rows(values, n_new)
 
     def remove(self, index):
         """Drop owned rows `index`, filling the holes from the end (order is not kept)."""
@@ -142,6 +134,10 @@ class ParticleSet:
     def append_halo(self, values):
         """Append halo copies (rows after the owned ones); fields not given get defaults."""
         n_new = len(next(iter(values.values()))) if values else 0
+        self.n_total = self._write_rows(values, n_new)
+
+    def _write_rows(self, values, n_new):
+        """Write n_new rows after row n_total (defaults where `values` lacks a field)."""
         self.reserve(self.n_total + n_new)
         lo, hi = self.n_total, self.n_total + n_new
         for name, spec in self.specs.items():
@@ -150,7 +146,7 @@ class ParticleSet:
                 arr[lo:hi] = values[name]
             else:
                 self._fill(spec, arr[lo:hi])
-        self.n_total = hi
+        return hi
 
     def drop_halo(self):
         self.n_total = self.n_owned
