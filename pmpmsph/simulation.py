@@ -232,15 +232,17 @@ class Simulation:
         if self._fault is not None and self._fault == (self.dist.rank, self.step_count):
             raise RuntimeError(f"fault injected on rank {self.dist.rank} at step "
                                f"{self.step_count} (PMPMSPH_INJECT_FAULT)")
+        x_before = None
         if self.prescribed is not None:
             self.prescribed.apply(self.time)
+            x_before = self.prescribed.positions()
         if self.loads is not None:
             self.loads.update(self.time)
         bad = -1
         if self.mpm is not None:
             bad = self.mpm.step(self.dt, self.time)
         if self.prescribed is not None:
-            self.prescribed.apply(self.time + self.dt)
+            self.prescribed.apply(self.time, self.dt, x_before)
         if self.dist.any(bad >= 0):
             self._fail(bad)
         self.time += self.dt

@@ -63,11 +63,14 @@ class PrescribedVelocity:
                 ids[_in_region(x, s.region)] = j
         return ids
 
-    def apply(self, time):
+    def apply(self, time, dt=None, x_before=None):
+        """Set the prescribed components of v; after a step (`dt`, positions `x_before` at
+        its start) also move those particles with that velocity rather than the grid's."""
         p = self.particles
         n = p.n_owned
         ids = p["vpres_id"][:n]
         v = p["v"]
+        x = p["x"]
         for j, s in enumerate(self.specs):
             if not (s.start <= time < s.until):
                 continue
@@ -75,3 +78,9 @@ class PrescribedVelocity:
             for a, val in enumerate(s.velocity):
                 if val is not None:
                     v[:n, a][sel] = val
+                    if x_before is not None:
+                        x[:n, a][sel] = x_before[sel, a] + dt * val
+
+    def positions(self):
+        """Positions of the constrained particles at the start of a step (for `apply`)."""
+        return self.particles["x"].copy()

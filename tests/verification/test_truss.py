@@ -15,17 +15,17 @@ until the tension wave from the top reaches it, ~7 ms, and the first stretch pea
 test_linear_hats_with_100x100_points_match_the_thesis: where the thesis' linear hats work
 (3 x 3 and 4 x 4 cells, 100 x 100 points), ours reproduce its l_y within 7 % and l_x within 12 %.
 
-(not in the suite, see below) smooth shapes: GIMP and quadratic/cubic B-splines with 20 x 20 points at 7 x 7
-and 8 x 8 cells must run through the phase where linear fails and the first oscillations
-(to t = 0.3, when damping alpha_d = 25 has reduced the swing to e^{-3.75} ~ 2 %), lose no
-particle, stay finite, and give l_y, l_x in a band around the converged 0.120 / 0.033 (thesis
-500 x 500 points). Band: with 20 points the measured span misses half a point spacing
+(not in the suite, see below) smooth shapes: GIMP and quadratic/cubic B-splines with 20 x 20
+points at 7 x 7 and 8 x 8 cells must run through the phase where linear fails and the first
+oscillations (to t = 0.3, when damping alpha_d = 25 has reduced the swing to e^{-3.75} ~ 2 %),
+lose no particle, stay finite, and give l_y, l_x in a band around the converged 0.120 / 0.033
+(thesis 500 x 500 points). Band: with 20 points the measured span misses half a point spacing
 (0.0015) at each end, stretched about 3.4x at the top (static neo-Hookean uniaxial stretch
 there) and 1x at the bottom, so l_y(20 pts) ~ 0.120 - 0.0066 = 0.113, and l_x ~ 0.033 * 0.95;
-we allow 0.100 < l_y < 0.130 and 0.024 < l_x < 0.040 (the spread of the thesis' own
-tables 6-9 plus the residual swing). 5 x 5 points are not included: at 7-8 cells their
-spacing is already 1.4-1.6 cells, ~5 cells once stretched, beyond the 1-2 cell support of any
-of these shape functions (and GIMP refuses spacing > cell size).
+we allow 0.100 < l_y < 0.130 and 0.024 < l_x < 0.040 (the spread of the thesis' own tables 6-9
+plus the residual swing). 5 x 5 points are not included: at 7-8 cells their spacing is already
+1.4-1.6 cells, ~5 cells once stretched, beyond the 1-2 cell support of any of these shape
+functions (and GIMP refuses spacing > cell size).
 Measured (this build): every GIMP/B-spline configuration leaves the grid at t = 0.020-0.022,
 just like linear hats (the material separates near the top, where the dynamic stretch
 reaches 4-5; even 100 x 100 points fail at 8 x 8 cells with linear, GIMP and quadratic).

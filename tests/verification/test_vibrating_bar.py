@@ -11,10 +11,12 @@ centre-of-mass velocity is
 since beta L = pi/2. The test runs two periods at h = 1, 1/2, 1/4, 1/8 (2 particles per cell,
 dt = 0.01 h, Courant number 0.1) and measures the largest deviation of v_cm from this over the
 run, relative to the amplitude 2 v0/pi. It must be small and fall with refinement.
-Measured (this build, T = 20): 1.12e-2, 3.91e-3, 1.58e-3, 6.73e-4 -> observed order 1.51,
-1.31, 1.23 per halving, 1.35 overall (uniform GIMP with a fixed particle size). Linear hats do not converge here (the free-end particle
-crossing into an empty cell sees a nearly massless node; USL inverts it at h = 1/2), and the
-B-splines converge at first order only (the fixed node does not pin a B-spline field).
+Measured (this build, T = 20): 1.09e-2, 3.80e-3, 1.52e-3, 6.48e-4 -> observed order 1.52,
+1.32, 1.23 per halving, 1.36 overall (uniform GIMP with a fixed particle size).
+Linear hats do not converge here (the free-end particle crossing into an empty cell sees a
+nearly massless node; USL inverts it at h = 1/2, MUSL gives 6.4e-3, 8.0e-2, 1.5e-1, 3.3e-1),
+and the B-splines converge at first order only (the fixed node does not pin a B-spline
+field: quadratic 6.7e-2 -> 7.8e-3, cubic 9.6e-2 -> 1.1e-2 from h = 1 to 1/8 over one period).
 """
 from pathlib import Path
 
