@@ -30,8 +30,6 @@ DIAG_COLUMNS = ("time", "step", "dt", "kinetic", "strain", "potential", "total",
 SORT_EVERY = 100
 #: below this many particles per rank everything is in cache and sorting buys nothing
 SORT_MIN_PARTICLES = 20_000
-#: fields a snapshot may hold: stored ones, plus `rho` derived from mass and volume
-DERIVED_FIELDS = ("rho",)
 
 
 def _hms(seconds):

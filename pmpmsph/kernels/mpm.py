@@ -9,7 +9,7 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.dispatch import compute_stress_tagged
-from .shapes import axis_weights
+from .shapes import particle_stencil
 
 
 @njit
@@ -30,20 +30,13 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv
     st = np.zeros(3, np.int64)
     st[:dim] = strides
     n = x.shape[0]
-    lp0 = lp1 = lp2 = 0.5
     fe0 = fe1 = fe2 = 0.0
     fld = 0
     for p in range(n):
-        if lp is not None:
-            lp0 = lp[p, 0]
-            lp1 = lp[p, min(1, dim - 1)]
-            lp2 = lp[p, min(2, dim - 1)]
         if pfield is not None:
             fld = pfield[p]
-        b0, n0, w0, d0 = axis_weights(kind_tag, dim, 0, x[p], origin, inv_dx, lp0)
-        b1, n1, w1, d1 = axis_weights(kind_tag, dim, 1, x[p], origin, inv_dx, lp1)
-        b2, n2, w2, d2 = axis_weights(kind_tag, dim, 2, x[p], origin, inv_dx, lp2)
-        base = b0 * st[0] + b1 * st[1] + b2 * st[2]
+        base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = particle_stencil(
+            kind_tag, dim, x, lp, p, origin, inv_dx, st)
         m = mass[p]
         vo = vol[p] * inv_dx  # grad N = dw * inv_dx, folded in here
         mv0 = m * v[p, 0]
@@ -222,20 +215,13 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, 
     Fn = np.zeros((3, 3))
     sig = np.zeros((3, 3))
     n = x.shape[0]
-    lp0 = lp1 = lp2 = 0.5
     fld = 0
     bad = -1
     for p in range(n):
-        if lp is not None:
-            lp0 = lp[p, 0]
-            lp1 = lp[p, min(1, dim - 1)]
-            lp2 = lp[p, min(2, dim - 1)]
         if pfield is not None:
             fld = pfield[p]
-        b0, n0, w0, d0 = axis_weights(kind_tag, dim, 0, x[p], origin, inv_dx, lp0)
-        b1, n1, w1, d1 = axis_weights(kind_tag, dim, 1, x[p], origin, inv_dx, lp1)
-        b2, n2, w2, d2 = axis_weights(kind_tag, dim, 2, x[p], origin, inv_dx, lp2)
-        base = b0 * st[0] + b1 * st[1] + b2 * st[2]
+        base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = particle_stencil(
+            kind_tag, dim, x, lp, p, origin, inv_dx, st)
         vp0 = vp1 = vp2 = 0.0  # sum N v_new
         dv0 = dv1 = dv2 = 0.0  # sum N dv
         L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0

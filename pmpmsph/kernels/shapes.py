@@ -145,6 +145,22 @@ def axis_weights(kind_tag, dim, a, xp, origin, inv_dx, lp):
     return 0, 1, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0)
 
 
+@njit(inline="always")
+def particle_stencil(kind_tag, dim, x, lp, p, origin, inv_dx, st):
+    """Stencil of particle p: (base node, nodes per axis n0-n2, weights w0-w2, derivatives
+    d0-d2), the prologue P2G and G2P share. `lp` (GIMP half-widths) may be None."""
+    lp0 = lp1 = lp2 = 0.5
+    if lp is not None:
+        lp0 = lp[p, 0]
+        lp1 = lp[p, min(1, dim - 1)]
+        lp2 = lp[p, min(2, dim - 1)]
+    b0, n0, w0, d0 = axis_weights(kind_tag, dim, 0, x[p], origin, inv_dx, lp0)
+    b1, n1, w1, d1 = axis_weights(kind_tag, dim, 1, x[p], origin, inv_dx, lp1)
+    b2, n2, w2, d2 = axis_weights(kind_tag, dim, 2, x[p], origin, inv_dx, lp2)
+    base = b0 * st[0] + b1 * st[1] + b2 * st[2]
+    return base, n0, n1, n2, w0, w1, w2, d0, d1, d2
+
+
 def static_tags(dim, kind):
     """Compile-time constants for the kernels: Numba types a tuple by its length, so
     `len(dim_tag)` and `len(kind_tag) - 1` fold to constants and each (dim, shape function)

@@ -79,8 +79,10 @@ class PrescribedVelocity:
                 if val is not None:
                     v[:n, a][sel] = val
                     if x_before is not None:
-                        x[:n, a][sel] = x_before[sel, a] + dt * val
+                        x[:n, a][sel] = x_before[j][:, a] + dt * val
 
     def positions(self):
-        """Positions of the constrained particles at the start of a step (for `apply`)."""
-        return self.particles["x"].copy()
+        """Positions of each constraint's particles at the start of a step (for `apply`);
+        only those rows are copied."""
+        ids = self.particles["vpres_id"]
+        return [self.particles["x"][ids == j].copy() for j in range(len(self.specs))]
