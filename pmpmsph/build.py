@@ -5,7 +5,11 @@ from .errors import ConfigError
 from .particles import FieldSpec, ParticleSet
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
+from .physics.sph import SPHStage
 from .scene.seeding import seed_body
+
+#: `method` field codes (kernels.sph uses the same numbers)
+METHOD_CODES = {"mpm": 0, "sph": 1, "wall": 2}
 
 
 def material_arrays(case):
@@ -37,8 +41,12 @@ def build_particles(case, keep=None):
     """
     dim = case.dim
     ps = ParticleSet(dim)
-    for spec in MPMStage.fields(case):
-        ps.declare(spec)
+    if case.has_mpm:
+        for spec in MPMStage.fields(case):
+            ps.declare(spec)
+    if case.has_sph:
+        for spec in SPHStage.fields(case):
+            ps.declare(spec)
     mats = list(case.materials.values())
     mat_names = list(case.materials)
     state_size = max(m.state_size for m in mats)
@@ -51,8 +59,9 @@ def build_particles(case, keep=None):
         for spec in PrescribedVelocity.FIELDS:
             ps.declare(spec)
     gid0 = 0
-    lo = np.array(case.grid.origin) if case.grid else None
-    hi = np.array(case.grid.upper) if case.grid else None
+    lo = np.array(case.domain[0]) if case.domain else None
+    hi = np.array(case.domain[1]) if case.domain else None
+    where = "grid" if case.grid else "domain"
     for bi, body in enumerate(case.bodies):
         x, vol, spacing = seed_body(body, case.grid)
         key = f"bodies[{bi}]"
@@ -60,7 +69,7 @@ def build_particles(case, keep=None):
             raise ConfigError(key, f"body {body.name!r} has no particles: its geometry holds no "
                               "lattice point (check size against ppc/spacing)")
         if lo is not None and (np.any(x < lo) or np.any(x > hi)):
-            raise ConfigError(key, f"body {body.name!r} has particles outside the grid "
+            raise ConfigError(key, f"body {body.name!r} has particles outside the {where} "
                               f"[{lo.tolist()}, {hi.tolist()}]")
         mi = mat_names.index(body.material)
         mat = mats[mi]
@@ -72,7 +81,12 @@ def build_particles(case, keep=None):
             "gid": gid, "body": np.full(n, bi, np.int32), "mat": np.full(n, mi, np.int32),
             "x": x, "v": np.tile(np.array(body.velocity, float), (n, 1)),
             "mass": mat.rho0 * vol, "vol0": vol, "vol": vol,
+            "method": np.full(n, METHOD_CODES["wall" if body.wall else body.method], np.int8),
         }
+        if "rho" in ps:
+            vals["rho"] = np.full(n, mat.rho0)
+        if body.wall:
+            vals["v"] = np.zeros((n, dim))
         if body.stress:
             s = _voigt_to_tensor(body.stress, dim)
             vals["sigma"] = np.tile(s, (n, 1, 1))

@@ -20,6 +20,7 @@ from .parallel.balance import LoadBalancer
 from .parallel.migration import migrate, migrate_all
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
+from .physics.sph import SPHStage
 from .timing import Timers
 
 log = logging.getLogger("pmpmsph")
@@ -46,8 +47,7 @@ class Simulation:
         self.time = 0.0
         self.step_count = 0
         self.dim = case.dim
-        self.decomposition = (Decomposition(self.dist, case.grid, axis=case.parallel.axis)
-                              if case.grid else None)
+        self.decomposition = self._decompose(case)
         self.balancer = (LoadBalancer(case.parallel.balance_every,
                                       case.parallel.balance_threshold)
                          if self.decomposition is not None and self.dist.size > 1
@@ -59,6 +59,8 @@ class Simulation:
         self.gravity[: self.dim] = case.gravity
         self.mpm = (MPMStage(case, self.particles, self.materials, self.decomposition,
                              self.timers) if case.has_mpm else None)
+        self.sph = (SPHStage(case, self.particles, self.materials, self.decomposition,
+                             self.dist, self.timers) if case.has_sph else None)
         self.migrated = 0
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
@@ -68,7 +70,8 @@ class Simulation:
         if self.balancer is not None:  # seeding used equal slabs: balance before step 1
             with self.timers.phase("balance"):
                 self.rebalance()
-        self.h = min(case.grid.cell_size)
+        self.h = min(min(case.grid.cell_size) if case.grid else np.inf,
+                     case.sph.h if case.sph else np.inf)
         self.dt = self._initial_dt()
         self.out_dir = out_dir
         self.writer = self.diag = None
@@ -79,6 +82,21 @@ class Simulation:
         if write_output and out_dir is not None:
             self._open_output(overwrite)
         self.timers.add("setup", time.perf_counter() - t0 - self.timers.total["jit_warmup"])
+
+    def _decompose(self, case):
+        """Slabs of the grid; a pure-SPH scene cuts its [domain] box on a lattice of cells of
+        the kernel support 2h instead (slab faces only, no grid is allocated)."""
+        spec = case.grid
+        if spec is None and case.has_sph:
+            from .config.case import GridSpec
+
+            lo, hi = np.array(case.domain[0]), np.array(case.domain[1])
+            cells = np.maximum(np.floor((hi - lo) / (2.0 * case.sph.h)), 1).astype(int)
+            spec = GridSpec(tuple(lo), tuple((hi - lo) / cells), tuple(int(c) for c in cells))
+        if spec is None:
+            return None
+        return Decomposition(self.dist, spec, axis=case.parallel.axis,
+                             key="grid.cells" if case.grid else "domain")
 
     # -- JIT ----------------------------------------------------------------------------------
     def _compile_kernels(self):
@@ -111,6 +129,8 @@ class Simulation:
                     self.mpm.step(1e-30, 0.0)
                 g = self.mpm.grid
                 cell_keys(p["x"], g.origin, g.inv_dx, g.strides)
+            if self.sph is not None:
+                self.sph.warm_up()
             mtypes, mparams = self.materials
             mstate = p["mstate"] if "mstate" in p else np.zeros((0, 0))
             particle_sums(self.dim, p["x"], p["v"], p["mass"], p["vol0"], p["F"], p["mat"],
@@ -132,9 +152,12 @@ class Simulation:
         return self.dist.max(c)
 
     def stable_dt(self):
-        """CFL limit with Courant number 1: h / max(c + |v|)."""
+        """CFL limit with Courant number 1: h / max(c + |v|) (and the SPH viscous limit)."""
         c = self.signal_speed()
-        return self.h / c if c > 0 else math.inf
+        limit = self.h / c if c > 0 else math.inf
+        if self.sph is not None:
+            limit = min(limit, self.sph.stable_dt())
+        return limit
 
     def _initial_dt(self):
         tspec = self.case.time
@@ -177,7 +200,7 @@ class Simulation:
         n = p.n_owned
         out = {}
         for name in self.case.output.fields:
-            if name == "rho":
+            if name == "rho" and "rho" not in p:
                 out["rho"] = p["mass"][:n] / p["vol"][:n]
             elif name in p:
                 arr = p[name][:n]
@@ -239,6 +262,10 @@ class Simulation:
         bad = -1
         if self.mpm is not None:
             bad = self.mpm.step(self.dt, self.time)
+        if self.sph is not None:
+            bad_sph = self.sph.step(self.dt, self.time)
+            bad = bad if bad >= 0 else bad_sph
+            self.particles.drop_halo()
         if self.prescribed is not None:
             self.prescribed.apply(self.time, self.dt, x_before)
         if self.dist.any(bad >= 0):
@@ -261,8 +288,9 @@ class Simulation:
     def rebalance(self, force_faces=None):
         """Move slab faces if the work is out of balance (collective); True if they moved."""
         dec = self.decomposition
-        cells = list(self.case.grid.cells)
-        nodes_per_layer = float(np.prod([c + 1 for a, c in enumerate(cells) if a != dec.axis]))
+        cells = list(dec.spec.cells)
+        nodes_per_layer = (float(np.prod([c + 1 for a, c in enumerate(cells) if a != dec.axis]))
+                           if self.mpm is not None else 0.0)
         if force_faces is not None:
             faces, before, after = np.asarray(force_faces), None, None
         else:
@@ -273,6 +301,8 @@ class Simulation:
         self.decomposition = dec.with_faces(faces)
         if self.mpm is not None:
             self.mpm.set_decomposition(self.decomposition)
+        if self.sph is not None:
+            self.sph.set_decomposition(self.decomposition)
         self.migrated += migrate_all(self.decomposition, self.particles, self.step_count)
         if self.balancer is not None:
             self.balancer.history.append((self.step_count, before, after, faces.tolist()))
@@ -293,7 +323,8 @@ class Simulation:
             elif not J > 0:
                 cause = f"det F = {J:.3g} <= 0 (inverted material)"
             else:
-                cause = f"left the grid at x = {np.round(x, 6).tolist()}"
+                where = "grid" if self.case.grid else "domain"
+                cause = f"left the {where} at x = {np.round(x, 6).tolist()}"
         if self.dist.size > 1:  # every rank reports the same failure (printed once, by rank 0)
             found = [f for f in self.dist.comm.allgather((gid, cause)) if f[0] >= 0]
             gid, cause = found[0] if found else (gid, cause)

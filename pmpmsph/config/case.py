@@ -11,6 +11,9 @@ TRANSFERS = ("usl", "usf", "musl")
 CONTACTS = ("single", "multi")
 METHODS = ("mpm", "sph")
 BC_KINDS = ("fixed", "slip", "friction")
+SPH_KERNELS = ("cubic", "wendland")
+SPH_INTEGRATORS = ("verlet", "predictor_corrector", "rk3")
+SPH_FORMULATIONS = ("updated", "total")
 
 
 @dataclass(frozen=True)
@@ -40,6 +43,28 @@ class MPMSpec:
 
 
 @dataclass(frozen=True)
+class SPHSpec:
+    """SPH options (seed 000 §2 for the updated-Lagrangian form, seed 004 for the total one)."""
+    kernel: str = "cubic"
+    h: float = 0.0                     # smoothing length (support 2h)
+    spacing: float = 0.0               # initial particle spacing (artificial stress W(dp))
+    formulation: str = "updated"       # updated (Gray-Monaghan) | total (seed 004)
+    correction: bool = True            # total: Liu's full kernel correction (eqs. 1-3)
+    deformation: str = "reference"     # total: F by eq. 8 (reference) or eq. 9 (rate)
+    integrator: str = "predictor_corrector"
+    av_alpha: float = 1.0              # artificial viscosity (seed 000, eq. 2.7)
+    av_beta: float = 1.0
+    artificial_stress: float = 0.0     # epsilon of Gray, Monaghan & Swift (0: off)
+    artificial_stress_exponent: float = 4.0
+    damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
+    wall_no_slip: bool = True          # dummy walls: no-slip or free slip
+
+    @property
+    def kernel_code(self):
+        return SPH_KERNELS.index(self.kernel)
+
+
+@dataclass(frozen=True)
 class BodySpec:
     name: str
     method: str
@@ -50,6 +75,7 @@ class BodySpec:
     count: Optional[tuple] = None
     velocity: tuple = ()
     stress: tuple = ()          # initial (pre-)stress, Voigt order for the dimension
+    wall: bool = False          # SPH dummy wall particles (fixed, pressure extrapolated)
 
 
 @dataclass(frozen=True)
@@ -131,11 +157,17 @@ class Case:
     time: TimeSpec = None
     output: OutputSpec = field(default_factory=OutputSpec)
     parallel: ParallelSpec = field(default_factory=ParallelSpec)
+    sph: Optional[SPHSpec] = None
+    domain: Optional[tuple] = None  # (min, max) box particles must stay in (grid box if any)
     text: str = ""
 
     @property
     def has_mpm(self):
         return any(b.method == "mpm" for b in self.bodies)
+
+    @property
+    def has_sph(self):
+        return any(b.method == "sph" for b in self.bodies)
 
     def material_names(self):
         return list(self.materials)

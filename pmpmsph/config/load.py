@@ -10,9 +10,10 @@ import tomllib
 from ..errors import ConfigError
 from ..materials import material_from_table
 from ..scene.geometry import Box, Disc, Polygon
-from .case import (BC_KINDS, CONTACTS, METHODS, SHAPES, TRANSFERS, BodySpec, BoundarySpec,
-                   Case, GridSpec, LoadSpec, MPMSpec, OutputSpec, ParallelSpec, PrescribedSpec,
-                   Region, TimeSpec)
+from .case import (BC_KINDS, CONTACTS, METHODS, SHAPES, SPH_FORMULATIONS, SPH_INTEGRATORS,
+                   SPH_KERNELS, TRANSFERS, BodySpec, BoundarySpec, Case, GridSpec, LoadSpec,
+                   MPMSpec, OutputSpec, ParallelSpec, PrescribedSpec, Region, SPHSpec,
+                   TimeSpec)
 from .table import Table
 
 FACES = ("x-", "x+", "y-", "y+", "z-", "z+")
@@ -165,8 +166,70 @@ def _body(t, dim, materials, grid):
         count = t.vector("count", dim, integer=True, positive=True, scalar_ok=True)
     velocity = t.vector("velocity", dim, (0.0,) * dim)
     stress = t.vector("stress", _voigt_len(dim), ())
+    wall = t.boolean("wall", False)
+    if wall and method != "sph":
+        raise ConfigError(t.key("wall"), "wall particles are SPH dummy particles: set "
+                          "method = \"sph\" (MPM walls are grid boundaries)")
+    if method == "sph" and ppc is not None:
+        raise ConfigError(t.key("ppc"), "SPH bodies are seeded by spacing or count, not ppc")
     t.finish()
-    return BodySpec(name, method, mat, geom, ppc, spacing, count, velocity, stress)
+    return BodySpec(name, method, mat, geom, ppc, spacing, count, velocity, stress, wall)
+
+
+def _body_spacing(body):
+    """Smallest lattice spacing of an SPH body (spacing or count given)."""
+    if body.spacing is not None:
+        return min(body.spacing)
+    g = body.geometry
+    return min((hi - lo) / c for lo, hi, c in zip(g.lo, g.hi, body.count))
+
+
+def _sph(t, dim, bodies, materials):
+    """The [sph] section; h defaults to h_factor x the particle spacing (seed 004 §2)."""
+    solids = [b for b in bodies if b.method == "sph" and not b.wall]
+    spacing = min((_body_spacing(b) for b in solids), default=0.0)
+    if spacing == 0.0:
+        raise ConfigError("bodies", "SPH scenes need at least one SPH body that is not a wall")
+    kernel = t.string("kernel", "cubic", choices=SPH_KERNELS)
+    if t.has("h") and t.has("h_factor"):
+        raise ConfigError(t.key("h_factor"), "give either sph.h or sph.h_factor, not both")
+    h = t.number("h", None, min_open=0.0)
+    if h is None:
+        h = t.number("h_factor", 1.3, min_open=0.0, max=4.0) * spacing
+    integrator = t.string("integrator", "predictor_corrector",
+                          choices=SPH_INTEGRATORS + ("leapfrog",))
+    integrator = "verlet" if integrator == "leapfrog" else integrator
+    visc = t.sub("viscosity", {})
+    av_alpha = visc.number("alpha", 1.0, min=0.0)
+    av_beta = visc.number("beta", 1.0, min=0.0)
+    visc.finish()
+    walls = t.string("walls", "no_slip", choices=("no_slip", "slip"))
+    for i, b in enumerate(bodies):
+        if b.wall and materials[b.material].type_code != 5:
+            raise ConfigError(f"bodies[{i}].material", "wall particles take a tait_fluid "
+                              "material (their density follows the extrapolated pressure)")
+    spec = SPHSpec(
+        kernel=kernel, h=h, spacing=spacing,
+        formulation=t.string("formulation", "updated", choices=SPH_FORMULATIONS),
+        correction=t.boolean("correction", True),
+        deformation=t.string("deformation", "reference", choices=("reference", "rate")),
+        integrator=integrator, av_alpha=av_alpha, av_beta=av_beta,
+        artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
+        artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
+        damping=t.number("damping", 0.0, min=0.0),
+        wall_no_slip=walls == "no_slip")
+    t.finish()
+    return spec
+
+
+def _domain(t, dim):
+    lo = t.vector("min", dim)
+    hi = t.vector("max", dim)
+    for a in range(dim):
+        if hi[a] <= lo[a]:
+            raise ConfigError(t.key("max") + f"[{a}]", "max must exceed min")
+    t.finish()
+    return (lo, hi)
 
 
 def _face_normal(face, dim):
@@ -283,8 +346,22 @@ def case_from_dict(data, name="case", text=""):
             raise ConfigError(f"bodies[{i}].name", f"duplicate body name {n!r}")
     if any(b.method == "mpm" for b in bodies) and grid is None:
         raise ConfigError("grid", "MPM bodies need a [grid] section")
-    if any(b.method == "sph" for b in bodies):
-        raise ConfigError("bodies[].method", "SPH bodies are not available yet in this build")
+    has_sph = any(b.method == "sph" for b in bodies)
+    sph_t = root.sub("sph", None)
+    if sph_t is not None and not has_sph:
+        raise ConfigError("sph", "an [sph] section but no body with method = \"sph\"")
+    sph = _sph(sph_t if sph_t is not None else Table({}, "sph"), dim, bodies,
+               materials) if has_sph else None
+    dom_t = root.sub("domain", None)
+    if dom_t is not None:
+        domain = _domain(dom_t, dim)
+    elif grid is not None:
+        domain = (grid.origin, grid.upper)
+    elif has_sph:
+        raise ConfigError("domain", "an SPH scene without a [grid] needs a [domain] box "
+                          "(min, max) that the particles stay in")
+    else:
+        domain = None
     if mpm.shape == "gimp" and any(b.ppc == 1 for b in bodies):
         pass  # lp = 1/2 is the largest GIMP support this stencil covers; ppc >= 1 is fine
 
@@ -324,4 +401,5 @@ def case_from_dict(data, name="case", text=""):
     root.finish()
     return Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
                 boundaries=boundaries, loads=loads, prescribed=prescribed, gravity=gravity,
-                time=TimeSpec(end, dt, cfl), output=output, parallel=parallel, text=text)
+                time=TimeSpec(end, dt, cfl), output=output, parallel=parallel, sph=sph,
+                domain=domain, text=text)

@@ -25,7 +25,7 @@ def default_axis(cells):
 
 
 class Decomposition:
-    def __init__(self, dist, grid_spec, axis=None, faces=None):
+    def __init__(self, dist, grid_spec, axis=None, faces=None, key="grid.cells"):
         self.dist = dist
         self.spec = grid_spec
         self.axis = default_axis(grid_spec.cells) if axis is None else axis
@@ -34,7 +34,7 @@ class Decomposition:
         self.origin = float(grid_spec.origin[self.axis])
         size = dist.size
         if self.ncells < MIN_SLAB * size:
-            raise ConfigError("grid.cells", f"{self.ncells} cells along axis {'xyz'[self.axis]} "
+            raise ConfigError(key, f"{self.ncells} cells along axis {'xyz'[self.axis]} "
                               f"cannot make {size} slabs of at least {MIN_SLAB} cells: use at "
                               f"most {self.ncells // MIN_SLAB} ranks")
         if faces is None:
@@ -42,6 +42,7 @@ class Decomposition:
         self.faces = np.asarray(faces, dtype=np.int64)
         self.rank = dist.rank
         self.size = size
+        self.key = key
 
     # -- ownership ----------------------------------------------------------------------------
     @property
@@ -103,4 +104,4 @@ class Decomposition:
         return ghosts, shared
 
     def with_faces(self, faces):
-        return Decomposition(self.dist, self.spec, self.axis, faces)
+        return Decomposition(self.dist, self.spec, self.axis, faces, self.key)

@@ -11,6 +11,7 @@ from .migration import _pack, _unpack
 
 TAG_HALO_COUNT = 31
 TAG_HALO_DATA = 32
+TAG_HALO_REFRESH = 33
 
 
 class ParticleHalo:
@@ -24,6 +25,7 @@ class ParticleHalo:
             raise ValueError(f"halo width {self.width:g} exceeds the thinnest slab {thinnest:g}")
         self.names = particles.fields(halo=True)
         self.bytes_sent = 0
+        self._plan = None  # (send lists, [(neighbour, first halo row, count)]) of the last exchange
 
     def send_lists(self):
         """Owned particles within `width` of the low and high faces of this slab."""
@@ -47,7 +49,8 @@ class ParticleHalo:
         from mpi4py import MPI
 
         comm = self.dec.dist.comm
-        sends = {nb: _pack(p, self.names, idx) for nb, idx in self.send_lists().items()}
+        lists = self.send_lists()
+        sends = {nb: _pack(p, self.names, idx) for nb, idx in lists.items()}
         counts, reqs = {}, []
         for nb, rows in sends.items():
             counts[nb] = np.zeros(2, np.int64)
@@ -65,8 +68,40 @@ class ParticleHalo:
                 reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_DATA))
         MPI.Request.Waitall(reqs)
         received = 0
-        for buf in bufs:
+        recv_rows = []
+        for nb, buf in zip(sends, bufs):
+            recv_rows.append((nb, p.n_total, buf.shape[0]))
             if buf.shape[0]:
                 p.append_halo(_unpack(p, self.names, buf))
                 received += buf.shape[0]
+        self._plan = (lists, recv_rows)
         return received
+
+    def refresh(self, names):
+        """Re-send fields `names` of the particles of the last exchange into the same halo
+        rows (after the owners updated them, e.g. the wall pressures); same plan, no search."""
+        if self.dec.size == 1 or self._plan is None:
+            return
+        from mpi4py import MPI
+
+        p = self.particles
+        comm = self.dec.dist.comm
+        lists, recv_rows = self._plan
+        reqs, bufs = [], []
+        for nb, idx in lists.items():
+            rows = _pack(p, names, idx)
+            if rows.size:
+                reqs.append(comm.Isend(rows, dest=nb, tag=TAG_HALO_REFRESH))
+                self.bytes_sent += rows.nbytes
+        width = sum(int(np.prod(p.arrays[nm].shape[1:], dtype=np.int64))
+                    * p.arrays[nm].itemsize for nm in names)
+        for nb, first, count in recv_rows:
+            buf = np.empty((count, width), np.uint8)
+            bufs.append((first, buf))
+            if count:
+                reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_REFRESH))
+        MPI.Request.Waitall(reqs)
+        for first, buf in bufs:
+            if buf.shape[0]:
+                for name, arr in _unpack(p, names, buf).items():
+                    p.arrays[name][first:first + buf.shape[0]] = arr

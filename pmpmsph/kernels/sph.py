@@ -1,0 +1,334 @@
+"""Updated-Lagrangian SPH kernels (Gray-Monaghan solids, weakly compressible fluids).
+
+Each function loops over plain arrays; the stage (`pmpmsph.physics.sph`) owns the order.
+Rows [0, n_owned) are owned particles, the rest halo copies. `method` codes: 0 MPM,
+1 SPH, 2 SPH wall (dummy particle). Neighbour lists are CSR (`start`, `index`) from
+`kernels.neighbours` and hold the row itself.
+
+* `sph_rates`: continuity (seed 000, eq. 2.5), momentum with stress (eq. 2.6), the
+  Monaghan artificial viscosity (eqs. 2.7-2.8), Monaghan's artificial stress against the
+  tensile instability (Gray, Monaghan & Swift 2001), and the velocity gradient whose
+  symmetric part is the strain rate of eq. 2.9 (difference form of eq. 2.4).
+* `wall_state`: dummy-particle walls (Adami, Hu & Adams 2012, eq. 27): pressure extrapolated
+  from the fluid with the hydrostatic correction, density from the inverse Tait law, and the
+  ghost velocity used in the viscous stress (no-slip: -v~, free slip: +v~).
+* `sph_stress`: stress of owned SPH particles from their F (solids) or density (fluids).
+"""
+import numpy as np
+
+from ..jit import njit
+from ..materials.codes import TAIT_FLUID
+from ..materials.dispatch import compute_stress, wave_speed
+from .sph_kernels import kernel_dwdr, kernel_w
+
+MPM = 0
+SPH = 1
+WALL = 2
+
+
+@njit
+def sound_speeds(dim, n, method, mat, rho, F, mtypes, mparams, cs):
+    """Current wave speed of rows [0, n) (for the artificial viscosity)."""
+    for a in range(n):
+        mi = mat[a]
+        if mtypes[mi] == TAIT_FLUID:
+            J = mparams[mi, 2] / rho[a]
+        else:
+            F_ = F[a]
+            J = (F_[0, 0] * (F_[1, 1] * F_[2, 2] - F_[1, 2] * F_[2, 1])
+                 - F_[0, 1] * (F_[1, 0] * F_[2, 2] - F_[1, 2] * F_[2, 0])
+                 + F_[0, 2] * (F_[1, 0] * F_[2, 1] - F_[1, 1] * F_[2, 0]))
+        cs[a] = wave_speed(mtypes[mi], mparams[mi], J) if J > 0 else mparams[mi, 2] * 0.0
+
+
+@njit
+def artificial_stress(dim, n, sigma, rho, eps, R):
+    """R_a = -eps sigma'_ii / rho^2 on the tensile principal stresses, rotated back
+    (Gray, Monaghan & Swift 2001, eqs. 23-25); zero for compressive ones."""
+    for a in range(n):
+        for i in range(3):
+            for j in range(3):
+                R[a, i, j] = 0.0
+        s = -eps / (rho[a] * rho[a])
+        if dim == 1:
+            if sigma[a, 0, 0] > 0.0:
+                R[a, 0, 0] = s * sigma[a, 0, 0]
+            continue
+        if dim == 2:
+            sxx = sigma[a, 0, 0]
+            syy = sigma[a, 1, 1]
+            sxy = sigma[a, 0, 1]
+            theta = 0.5 * np.arctan2(2.0 * sxy, sxx - syy)
+            c = np.cos(theta)
+            sn = np.sin(theta)
+            s1 = c * c * sxx + 2.0 * c * sn * sxy + sn * sn * syy
+            s2 = sn * sn * sxx - 2.0 * c * sn * sxy + c * c * syy
+            r1 = s * s1 if s1 > 0.0 else 0.0
+            r2 = s * s2 if s2 > 0.0 else 0.0
+            R[a, 0, 0] = c * c * r1 + sn * sn * r2
+            R[a, 1, 1] = sn * sn * r1 + c * c * r2
+            R[a, 0, 1] = c * sn * (r1 - r2)
+            R[a, 1, 0] = R[a, 0, 1]
+            continue
+        w, V = np.linalg.eigh(sigma[a])
+        for k in range(3):
+            if w[k] > 0.0:
+                rk = s * w[k]
+                for i in range(3):
+                    for j in range(3):
+                        R[a, i, j] += rk * V[i, k] * V[j, k]
+
+
+@njit
+def wall_state(dim, kern, h, n_query, x, v, mass, rho, sigma, method, mat, start, index,
+               mtypes, mparams, gravity, no_slip, vg):
+    """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
+    p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
+    rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I; the ghost
+    velocity vg_w = -v~ (no-slip) or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf."""
+    for w in range(n_query):
+        if method[w] != WALL:
+            continue
+        sw = 0.0
+        ps = 0.0
+        vt = np.zeros(3)
+        for k in range(start[w], start[w + 1]):
+            f = index[k]
+            if method[f] == WALL:
+                continue
+            r2 = 0.0
+            gr = 0.0
+            for d in range(dim):
+                dx = x[w, d] - x[f, d]
+                r2 += dx * dx
+                gr += gravity[d] * dx
+            W = kernel_w(kern, dim, np.sqrt(r2), h)
+            pf = -(sigma[f, 0, 0] + sigma[f, 1, 1] + sigma[f, 2, 2]) / 3.0
+            ps += (pf + rho[f] * gr) * W
+            sw += W
+            for d in range(dim):
+                vt[d] += v[f, d] * W
+        mi = mat[w]
+        kappa = mparams[mi, 0]
+        gamma = mparams[mi, 1]
+        rho0 = mparams[mi, 2]
+        p = ps / sw if sw > 0.0 else 0.0
+        ratio = p / kappa + 1.0
+        if ratio < 1e-3:
+            ratio = 1e-3
+        rho[w] = rho0 * ratio ** (1.0 / gamma)
+        for i in range(3):
+            for j in range(3):
+                sigma[w, i, j] = -p if i == j else 0.0
+        sgn = -1.0 if no_slip else 1.0
+        for d in range(dim):
+            vg[w, d] = sgn * vt[d] / sw if sw > 0.0 else 0.0
+
+
+@njit
+def sph_rates(dim, kern, h, n_query, x, v, vg, mass, rho, sigma, cs, method, start, index,
+              av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping, acc, drho, L,
+              want_force):
+    """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
+    artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
+    damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
+    (eq. 2.9 before symmetrisation, with 1/rho_a for m_b/rho_b: this is the velocity gradient
+    whose stress power equals the work of the eq. 2.6 forces, so the semi-discrete energy is
+    conserved, and tr L = -drho/rho so rho det F stays constant), v~ the ghost velocity of a
+    wall neighbour. With `want_force` False only drho and L are computed.
+    Pi_ab = (-alpha c_ab eta + beta eta^2)/rho_ab when approaching, eta = h v_ab.x_ab /
+    (r^2 + 0.01 h^2) (eqs. 2.7-2.8, with the usual 0.01 h^2 against r -> 0)."""
+    eps2 = 0.01 * h * h
+    for a in range(n_query):
+        if method[a] != SPH:
+            continue
+        ax = np.zeros(3)
+        dr = 0.0
+        La = np.zeros((3, 3))
+        ra2 = 1.0 / (rho[a] * rho[a])
+        for k in range(start[a], start[a + 1]):
+            b = index[k]
+            if b == a:
+                continue
+            xab0 = x[a, 0] - x[b, 0]
+            xab1 = x[a, 1] - x[b, 1] if dim > 1 else 0.0
+            xab2 = x[a, 2] - x[b, 2] if dim > 2 else 0.0
+            r2 = xab0 * xab0 + xab1 * xab1 + xab2 * xab2
+            if r2 >= 4.0 * h * h or r2 == 0.0:
+                continue
+            r = np.sqrt(r2)
+            fr = kernel_dwdr(kern, dim, r, h) / r
+            g0 = fr * xab0
+            g1 = fr * xab1
+            g2 = fr * xab2
+            vab0 = v[a, 0] - v[b, 0]
+            vab1 = v[a, 1] - v[b, 1] if dim > 1 else 0.0
+            vab2 = v[a, 2] - v[b, 2] if dim > 2 else 0.0
+            mb = mass[b]
+            dr += mb * (vab0 * g0 + vab1 * g1 + vab2 * g2)
+            # velocity gradient (walls: their ghost velocity)
+            wb = mb
+            if method[b] == WALL:
+                u0 = vg[b, 0] - v[a, 0]
+                u1 = vg[b, 1] - v[a, 1] if dim > 1 else 0.0
+                u2 = vg[b, 2] - v[a, 2] if dim > 2 else 0.0
+            else:
+                u0 = -vab0
+                u1 = -vab1
+                u2 = -vab2
+            La[0, 0] += wb * u0 * g0
+            if dim > 1:
+                La[0, 1] += wb * u0 * g1
+                La[1, 0] += wb * u1 * g0
+                La[1, 1] += wb * u1 * g1
+            if dim > 2:
+                La[0, 2] += wb * u0 * g2
+                La[1, 2] += wb * u1 * g2
+                La[2, 0] += wb * u2 * g0
+                La[2, 1] += wb * u2 * g1
+                La[2, 2] += wb * u2 * g2
+            if not want_force:
+                continue
+            # artificial viscosity
+            vx = vab0 * xab0 + vab1 * xab1 + vab2 * xab2
+            pi = 0.0
+            if vx < 0.0:
+                eta = h * vx / (r2 + eps2)
+                pi = (-av_alpha * 0.5 * (cs[a] + cs[b]) * eta + av_beta * eta * eta) / (
+                    0.5 * (rho[a] + rho[b]))
+            rb2 = 1.0 / (rho[b] * rho[b])
+            fab = 0.0
+            if use_as:
+                fab = (kernel_w(kern, dim, r, h) / w_dp) ** as_n
+            for i in range(dim):
+                t0 = sigma[a, i, 0] * ra2 + sigma[b, i, 0] * rb2
+                t1 = sigma[a, i, 1] * ra2 + sigma[b, i, 1] * rb2 if dim > 1 else 0.0
+                t2 = sigma[a, i, 2] * ra2 + sigma[b, i, 2] * rb2 if dim > 2 else 0.0
+                if use_as:
+                    t0 += fab * (R[a, i, 0] + R[b, i, 0])
+                    if dim > 1:
+                        t1 += fab * (R[a, i, 1] + R[b, i, 1])
+                    if dim > 2:
+                        t2 += fab * (R[a, i, 2] + R[b, i, 2])
+                if i == 0:
+                    t0 -= pi
+                elif i == 1:
+                    t1 -= pi
+                else:
+                    t2 -= pi
+                ax[i] += mb * (t0 * g0 + t1 * g1 + t2 * g2)
+        if want_force:
+            for i in range(dim):
+                acc[a, i] = ax[i] + gravity[i] - damping * v[a, i]
+        drho[a] = dr
+        for i in range(3):
+            for j in range(3):
+                L[a, i, j] = La[i, j] / rho[a]
+
+
+@njit
+def sph_stress(dim, n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mparams,
+               sigma, vol, mass):
+    """Stress, volume (m/rho) of owned SPH rows; fluids take F = J^(1/dim) I with
+    J = rho0/rho (continuity density); material state restarts from `mstate_in`
+    (the state at the step start) so multi-stage integrators commit it once.
+    Returns the first row with a NaN or non-positive J, or -1."""
+    bad = -1
+    Fe = np.eye(3)
+    La = np.zeros((3, 3))
+    for a in range(n):
+        if method[a] != SPH:
+            continue
+        mi = mat[a]
+        for s in range(mstate.shape[1]):
+            mstate[a, s] = mstate_in[a, s]
+        if mtypes[mi] == TAIT_FLUID:
+            J = mparams[mi, 2] / rho[a]
+            if not J > 0.0:
+                bad = a if bad < 0 else bad
+                continue
+            c = J ** (1.0 / dim)
+            for i in range(3):
+                for j in range(3):
+                    Fe[i, j] = 0.0
+                    F[a, i, j] = 0.0
+                Fe[i, i] = c if i < dim else 1.0
+                F[a, i, i] = Fe[i, i]
+            Fa = Fe
+        else:
+            Fa = F[a]
+            J = (Fa[0, 0] * (Fa[1, 1] * Fa[2, 2] - Fa[1, 2] * Fa[2, 1])
+                 - Fa[0, 1] * (Fa[1, 0] * Fa[2, 2] - Fa[1, 2] * Fa[2, 0])
+                 + Fa[0, 2] * (Fa[1, 0] * Fa[2, 1] - Fa[1, 1] * Fa[2, 0]))
+            if not J > 0.0:
+                bad = a if bad < 0 else bad
+                continue
+        for i in range(3):
+            for j in range(3):
+                La[i, j] = L[a, i, j]
+        compute_stress(mtypes[mi], Fa, La, dt, mstate[a], mparams[mi], sigma[a])
+        if not np.isfinite(sigma[a, 0, 0]) and bad < 0:
+            bad = a
+        vol[a] = mass[a] / rho[a]
+    return bad
+
+
+@njit
+def advance(dim, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho, L):
+    """y <- c0 y0 + c1 y + dtc f(y) for y = (x, v, rho, F), f = (v, acc, drho, L F), on
+    owned SPH rows (walls stay put). One formula covers Euler, predictor-corrector and
+    TVD-RK3 stages. Positions move with the velocity at the start of the stage."""
+    for a in range(n):
+        if method[a] != SPH:
+            continue
+        for d in range(dim):
+            xn = c0 * x0[a, d] + c1 * x[a, d] + dtc * v[a, d]
+            v[a, d] = c0 * v0[a, d] + c1 * v[a, d] + dtc * acc[a, d]
+            x[a, d] = xn
+        rho[a] = c0 * r0[a] + c1 * rho[a] + dtc * drho[a]
+        LF = np.zeros((3, 3))
+        for i in range(dim):
+            for j in range(dim):
+                s = 0.0
+                for k in range(dim):
+                    s += L[a, i, k] * F[a, k, j]
+                LF[i, j] = s
+        for i in range(dim):
+            for j in range(dim):
+                F[a, i, j] = c0 * F0[a, i, j] + c1 * F[a, i, j] + dtc * LF[i, j]
+
+
+@njit
+def kick_drift(dim, n, method, dt, x, v, rho, F, acc, drho, L, kick):
+    """Velocity Verlet pieces on owned SPH rows: kick v += dt/2 acc (kick=True), or
+    drift x += dt v, rho += dt drho, F <- (I + dt L) F (kick=False)."""
+    for a in range(n):
+        if method[a] != SPH:
+            continue
+        if kick:
+            for d in range(dim):
+                v[a, d] += 0.5 * dt * acc[a, d]
+            continue
+        for d in range(dim):
+            x[a, d] += dt * v[a, d]
+        rho[a] += dt * drho[a]
+        Fn = np.zeros((3, 3))
+        for i in range(dim):
+            for j in range(dim):
+                s = F[a, i, j]
+                for k in range(dim):
+                    s += dt * L[a, i, k] * F[a, k, j]
+                Fn[i, j] = s
+        for i in range(dim):
+            for j in range(dim):
+                F[a, i, j] = Fn[i, j]
+
+
+@njit
+def first_outside(dim, n, x, lo, hi):
+    """First owned row outside the box [lo, hi] or with a NaN position; -1 if none."""
+    for a in range(n):
+        for d in range(dim):
+            if not (x[a, d] >= lo[d] and x[a, d] <= hi[d]):
+                return a
+    return -1

@@ -1,0 +1,245 @@
+"""SPHStage: updated-Lagrangian SPH for solids and weakly compressible fluids
+(DESIGN.md §3, steps 1, 3, 4 and 5).
+
+One *evaluation* of the rates at the current state is:
+    halo exchange (owned particles near slab faces copied to the neighbours)
+    -> cell-list neighbours of owned particles over owned + halo rows
+    -> dummy wall particles take the fluid's extrapolated pressure (then a halo refresh)
+    -> sound speeds, artificial stress -> rates (acc, drho/dt, L) of owned SPH particles.
+The integrators combine evaluations:
+    verlet               kick v(dt/2) -> drift x, rho, F -> stress -> evaluate -> kick
+    predictor_corrector  y* = y + dt/2 f(prev) -> stress -> evaluate f* -> y = y + dt f*
+                         (Monaghan's midpoint predictor-corrector, one evaluation per step)
+    rk3                  TVD Runge-Kutta of Shu & Osher (seed 004, §5), three evaluations
+and the halo is refreshed at every evaluation.
+"""
+import numpy as np
+
+from ..kernels.neighbours import neighbour_lists
+from ..kernels.sph import (SPH, WALL, advance, artificial_stress, first_outside, kick_drift,
+                           sound_speeds, sph_rates, sph_stress, wall_state)
+from ..kernels.sph_kernels import SUPPORT, kernel_w
+from ..particles import FieldSpec
+from ..timing import Timers
+
+#: extra halo width beyond the kernel support, in units of h: owned particles may have moved
+#: up to CFL * h past their slab face since the last migration
+HALO_MARGIN = 1.0
+
+
+class SPHStage:
+    def __init__(self, case, particles, materials, decomposition, dist, timers=None):
+        self.case = case
+        self.p = particles
+        self.dim = case.dim
+        spec = case.sph
+        self.spec = spec
+        self.kern = spec.kernel_code
+        self.h = spec.h
+        self.radius = SUPPORT * self.h
+        self.integrator = spec.integrator
+        self.mtypes, self.mparams = materials
+        self.gravity = np.zeros(3)
+        self.gravity[: self.dim] = case.gravity
+        self.timers = timers if timers is not None else Timers()
+        self.dist = dist
+        self.halo_enabled = True
+        self.halo = None
+        self.set_decomposition(decomposition)
+        self.use_as = spec.artificial_stress > 0.0
+        self.w_dp = kernel_w(self.kern, self.dim, spec.spacing, self.h) if self.use_as else 1.0
+        self.no_slip = spec.wall_no_slip
+        self.lo = np.array(case.domain[0], float)
+        self.hi = np.array(case.domain[1], float)
+        self.start = np.zeros(1, np.int64)
+        self.index = np.zeros(0, np.int64)
+        self.evaluated = False
+        self.evaluations = 0
+
+    @staticmethod
+    def fields(case):
+        """Fields the SPH stage needs beyond the core ones (DESIGN.md §2)."""
+        multi = case.sph.integrator in ("predictor_corrector", "rk3")
+        out = [
+            FieldSpec("rho", (), halo=True, output=True),
+            FieldSpec("acc", ("dim",)),
+            FieldSpec("drho", ()),
+            FieldSpec("L", (3, 3)),
+            FieldSpec("cs", (), migrate=False),
+        ]
+        if any(b.wall for b in case.bodies):
+            out.append(FieldSpec("vg", ("dim",), migrate=False, halo=True))
+        if case.sph.artificial_stress > 0:
+            out.append(FieldSpec("R", (3, 3), migrate=False))
+        if multi:
+            out += [FieldSpec("x_n", ("dim",), migrate=False),
+                    FieldSpec("v_n", ("dim",), migrate=False),
+                    FieldSpec("rho_n", (), migrate=False),
+                    FieldSpec("F_n", (3, 3), migrate=False, fill="identity")]
+        return out
+
+    def set_decomposition(self, decomposition):
+        from ..parallel.particle_halo import ParticleHalo
+
+        self.dec = decomposition
+        self.halo = ParticleHalo(decomposition, self.p, (SUPPORT + HALO_MARGIN) * self.h)
+
+    # -- one evaluation ------------------------------------------------------------------------
+    def _mstate(self, n):
+        p = self.p
+        return p["mstate"][:n] if "mstate" in p else np.zeros((n, 0))
+
+    def kinematics(self):
+        """drho and L only, at unchanged positions with new velocities (the Verlet drift
+        needs them at the half-step velocity): halo velocities refreshed, same lists."""
+        p, t = self.p, self.timers
+        n = p.n_owned
+        if self.halo_enabled:
+            with t.phase("halo"):
+                self.halo.refresh(("v",) + (("vg",) if "vg" in p else ()))
+        with t.phase("sph"):
+            vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
+            sph_rates(self.dim, self.kern, self.h, n, p.with_halo("x"), p.with_halo("v"), vg,
+                      p.with_halo("mass"), p.with_halo("rho"), p.with_halo("sigma"),
+                      p.with_halo("cs"), p.with_halo("method"), self.start, self.index, 0.0,
+                      0.0, False, np.zeros((0, 3, 3)), 1.0, 1.0, self.gravity, 0.0,
+                      p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False)
+
+    def evaluate(self):
+        """Rates (acc, drho, L) of owned SPH particles at the current state."""
+        p, t = self.p, self.timers
+        if self.halo_enabled:
+            with t.phase("halo"):
+                self.halo.exchange()
+        n, nt = p.n_owned, p.n_total
+        with t.phase("neighbours"):
+            self.start, self.index = neighbour_lists(p.with_halo("x"), n, self.radius)
+        x = p.with_halo("x")
+        with t.phase("sph"):
+            if "vg" in p:
+                wall_state(self.dim, self.kern, self.h, n, x, p.with_halo("v"),
+                           p.with_halo("mass"), p.with_halo("rho"), p.with_halo("sigma"),
+                           p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
+                           self.mtypes, self.mparams, self.gravity, self.no_slip,
+                           p.with_halo("vg"))
+        if "vg" in p and self.halo_enabled:
+            with t.phase("halo"):
+                self.halo.refresh(("rho", "sigma", "vg"))
+        with t.phase("sph"):
+            rho, sigma = p.with_halo("rho"), p.with_halo("sigma")
+            sound_speeds(self.dim, nt, p.with_halo("method"), p.with_halo("mat"), rho,
+                         p.with_halo("F"), self.mtypes, self.mparams, p.with_halo("cs"))
+            R = p.with_halo("R") if self.use_as else np.zeros((0, 3, 3))
+            if self.use_as:
+                artificial_stress(self.dim, nt, sigma, rho, self.spec.artificial_stress, R)
+            vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
+            sph_rates(self.dim, self.kern, self.h, n, x, p.with_halo("v"), vg,
+                      p.with_halo("mass"), rho, sigma, p.with_halo("cs"),
+                      p.with_halo("method"), self.start, self.index, self.spec.av_alpha,
+                      self.spec.av_beta, self.use_as, R, self.spec.artificial_stress_exponent,
+                      self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
+                      p.with_halo("drho"), p.with_halo("L"), True)
+        self.evaluated = True
+        self.evaluations += 1
+
+    def stress(self, dt, mstate_in):
+        """Stress (and volume) of owned SPH particles; returns a failed row or -1."""
+        p = self.p
+        n = p.n_owned
+        with self.timers.phase("sph"):
+            return sph_stress(self.dim, n, p["method"], p["mat"], p["rho"], p["F"], p["L"], dt,
+                              mstate_in, self._mstate(n), self.mtypes, self.mparams,
+                              p["sigma"], p["vol"], p["mass"])
+
+    def initialise(self):
+        """Stress from the initial state, then the first rates (before step 1)."""
+        n = self.p.n_owned
+        self.stress(0.0, self._mstate(n).copy())
+        self.evaluate()
+
+    def warm_up(self):
+        """Compile every kernel of this stage on empty arrays (the caller has set the
+        particle counts to zero); no halo exchange."""
+        p = self.p
+        neighbour_lists(np.zeros((2, self.dim)), 2, 1.0)
+        self.halo_enabled = False
+        try:
+            self.evaluate()
+            self.kinematics()
+            self.stress(0.0, self._mstate(0).copy())
+            n = 0
+            if "x_n" in p:
+                self._advance(0.0, 1.0, 0.0)
+            kick_drift(self.dim, n, p["method"], 0.0, p["x"], p["v"], p["rho"], p["F"],
+                       p["acc"], p["drho"], p["L"], True)
+            first_outside(self.dim, n, p["x"], self.lo, self.hi)
+        finally:
+            self.halo_enabled = True
+            self.evaluated = False
+            self.evaluations = 0
+
+    # -- integrators ---------------------------------------------------------------------------
+    def _save(self):
+        p = self.p
+        for src, dst in (("x", "x_n"), ("v", "v_n"), ("rho", "rho_n"), ("F", "F_n")):
+            p[dst][...] = p[src]
+
+    def _advance(self, c0, c1, dtc):
+        p = self.p
+        n = p.n_owned
+        with self.timers.phase("integrate"):
+            advance(self.dim, n, p["method"], c0, p["x_n"], p["v_n"], p["rho_n"], p["F_n"], c1,
+                    dtc, p["x"], p["v"], p["rho"], p["F"], p["acc"], p["drho"], p["L"])
+
+    def step(self, dt, time):
+        """Advance owned SPH particles by dt; returns a failed row or -1."""
+        p = self.p
+        n = p.n_owned
+        if not self.evaluated:
+            self.initialise()
+        m0 = self._mstate(n).copy()
+        bad = -1
+        if self.integrator == "verlet":
+            with self.timers.phase("integrate"):
+                kick_drift(self.dim, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
+                           p["acc"], p["drho"], p["L"], True)
+            self.kinematics()
+            with self.timers.phase("integrate"):
+                kick_drift(self.dim, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
+                           p["acc"], p["drho"], p["L"], False)
+            bad = self.stress(dt, m0)
+            self.evaluate()
+            with self.timers.phase("integrate"):
+                kick_drift(self.dim, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
+                           p["acc"], p["drho"], p["L"], True)
+        elif self.integrator == "predictor_corrector":
+            self._save()
+            self._advance(0.0, 1.0, 0.5 * dt)     # predictor with the last rates
+            self.stress(0.5 * dt, m0)
+            self.evaluate()
+            self._advance(1.0, 0.0, dt)           # corrector from the step start
+            bad = self.stress(dt, m0)
+        else:  # TVD-RK3 (Shu & Osher)
+            self._save()
+            for c0, c1, frac in ((0.0, 1.0, 1.0), (0.75, 0.25, 0.5), (1.0 / 3.0, 2.0 / 3.0, 1.0)):
+                if c0 > 0.0:
+                    self.evaluate()
+                self._advance(c0, c1, c1 * dt)
+                bad = self.stress(frac * dt, m0)
+                if bad >= 0:
+                    break
+            if bad < 0:
+                self.evaluate()  # rates at the new state start the next step
+        if bad < 0:
+            bad = first_outside(self.dim, n, p["x"], self.lo, self.hi)
+        return bad
+
+    def stable_dt(self):
+        """Viscous limit 0.125 h^2 / nu of the fluids (CFL is handled by the caller)."""
+        from ..materials.codes import TAIT_FLUID
+
+        limit = np.inf
+        for code, par in zip(self.mtypes, self.mparams):
+            if code == TAIT_FLUID and par[3] > 0:
+                limit = min(limit, 0.125 * self.h * self.h * par[2] / par[3])
+        return limit
