@@ -42,39 +42,36 @@ def _bin(x, n, dim, lo, inv, ncell):
 
 
 @njit
-def _scan(x, n_query, dim, lo, inv, ncell, head, order, r2, start, index, count_only):
+def _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, r2, start, index, count_only):
     """Count (count_only) or write the neighbours of the first n_query rows."""
     total = 0
     for i in range(n_query):
-        kc = np.zeros(3, np.int64)
-        for a in range(dim):
-            k = int((x[i, a] - lo[a]) * inv)
-            kc[a] = min(max(k, 0), ncell[a] - 1)
+        k0 = min(max(int((x[i, 0] - lo[0]) * inv), 0), ncell[0] - 1)
+        k1 = min(max(int((x[i, 1] - lo[1]) * inv), 0), ncell[1] - 1) if dim > 1 else 0
+        k2 = min(max(int((x[i, 2] - lo[2]) * inv), 0), ncell[2] - 1) if dim > 2 else 0
         if not count_only:
             total = start[i]
         found = 0
-        lo2 = max(kc[2] - 1, 0) if dim > 2 else 0
-        hi2 = min(kc[2] + 1, ncell[2] - 1) if dim > 2 else 0
-        lo1 = max(kc[1] - 1, 0) if dim > 1 else 0
-        hi1 = min(kc[1] + 1, ncell[1] - 1) if dim > 1 else 0
+        lo2 = max(k2 - 1, 0)
+        hi2 = min(k2 + 1, ncell[2] - 1)
+        lo1 = max(k1 - 1, 0)
+        hi1 = min(k1 + 1, ncell[1] - 1)
+        lo0 = max(k0 - 1, 0)
+        hi0 = min(k0 + 1, ncell[0] - 1)
         for c2 in range(lo2, hi2 + 1):
             for c1 in range(lo1, hi1 + 1):
-                for c0 in range(max(kc[0] - 1, 0), min(kc[0] + 1, ncell[0] - 1) + 1):
-                    c = c0
-                    if dim > 1:
-                        c += ncell[0] * c1
-                    if dim > 2:
-                        c += ncell[0] * ncell[1] * c2
-                    for s in range(head[c], head[c + 1]):
-                        j = order[s]
-                        d2 = 0.0
-                        for a in range(dim):
-                            d = x[i, a] - x[j, a]
-                            d2 += d * d
-                        if d2 < r2:
-                            if not count_only:
-                                index[total + found] = j
-                            found += 1
+                # the cells c0 = lo0..hi0 of one row are contiguous in the sorted order
+                c_lo = lo0 + ncell[0] * (c1 + ncell[1] * c2)
+                c_hi = hi0 + ncell[0] * (c1 + ncell[1] * c2)
+                for s in range(head[c_lo], head[c_hi + 1]):
+                    d2 = 0.0
+                    for a in range(dim):
+                        d = x[i, a] - xs[s, a]
+                        d2 += d * d
+                    if d2 < r2:
+                        if not count_only:
+                            index[total + found] = order[s]
+                        found += 1
         if count_only:
             start[i + 1] = start[i] + found
     return start[n_query] if count_only else 0
@@ -98,8 +95,10 @@ def neighbour_lists(x, n_query, radius):
     ncell = np.concatenate([ncell, np.ones(3 - dim, np.int64)])
     inv = 1.0 / cell
     head, order = _bin(x, n, dim, lo, inv, ncell)
-    npairs = _scan(x, n_query, dim, lo, inv, ncell, head, order, radius * radius, start,
+    xs = x[order]  # positions in cell order: the candidate scans read memory contiguously
+    npairs = _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, radius * radius, start,
                    np.zeros(0, np.int64), True)
     index = np.empty(npairs, np.int64)
-    _scan(x, n_query, dim, lo, inv, ncell, head, order, radius * radius, start, index, False)
+    _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, radius * radius, start, index,
+          False)
     return start, index

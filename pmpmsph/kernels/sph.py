@@ -44,15 +44,15 @@ def sound_speeds(dim, n, method, mat, rho, F, mtypes, mparams, cs):
 @njit
 def artificial_stress(dim, n, sigma, rho, eps, R):
     """R_a = -eps sigma'_ii / rho^2 on the tensile principal stresses, rotated back
-    (Gray, Monaghan & Swift 2001, eqs. 23-25); zero for compressive ones."""
+    (Gray, Monaghan & Swift 2001, eqs. 23-25); zero for compressive ones. R is stored as
+    the symmetric 6-vector (xx, yy, zz, xy, yz, xz)."""
     for a in range(n):
-        for i in range(3):
-            for j in range(3):
-                R[a, i, j] = 0.0
+        for i in range(6):
+            R[a, i] = 0.0
         s = -eps / (rho[a] * rho[a])
         if dim == 1:
             if sigma[a, 0, 0] > 0.0:
-                R[a, 0, 0] = s * sigma[a, 0, 0]
+                R[a, 0] = s * sigma[a, 0, 0]
             continue
         if dim == 2:
             sxx = sigma[a, 0, 0]
@@ -65,18 +65,29 @@ def artificial_stress(dim, n, sigma, rho, eps, R):
             s2 = sn * sn * sxx - 2.0 * c * sn * sxy + c * c * syy
             r1 = s * s1 if s1 > 0.0 else 0.0
             r2 = s * s2 if s2 > 0.0 else 0.0
-            R[a, 0, 0] = c * c * r1 + sn * sn * r2
-            R[a, 1, 1] = sn * sn * r1 + c * c * r2
-            R[a, 0, 1] = c * sn * (r1 - r2)
-            R[a, 1, 0] = R[a, 0, 1]
+            R[a, 0] = c * c * r1 + sn * sn * r2
+            R[a, 1] = sn * sn * r1 + c * c * r2
+            R[a, 3] = c * sn * (r1 - r2)
             continue
-        w, V = np.linalg.eigh(sigma[a])
+        w, V = np.linalg.eigh(np.ascontiguousarray(sigma[a]))
         for k in range(3):
             if w[k] > 0.0:
                 rk = s * w[k]
-                for i in range(3):
-                    for j in range(3):
-                        R[a, i, j] += rk * V[i, k] * V[j, k]
+                R[a, 0] += rk * V[0, k] * V[0, k]
+                R[a, 1] += rk * V[1, k] * V[1, k]
+                R[a, 2] += rk * V[2, k] * V[2, k]
+                R[a, 3] += rk * V[0, k] * V[1, k]
+                R[a, 4] += rk * V[1, k] * V[2, k]
+                R[a, 5] += rk * V[0, k] * V[2, k]
+
+
+@njit
+def sync_ghost_velocity(n, method, v, vg):
+    """vg = v on the rows [0, n) that are not walls (walls keep their ghost velocity)."""
+    for a in range(n):
+        if method[a] != WALL:
+            for d in range(v.shape[1]):
+                vg[a, d] = v[a, d]
 
 
 @njit
@@ -86,12 +97,13 @@ def wall_state(dim, kern, h, n_query, x, v, mass, rho, sigma, method, mat, start
     p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
     rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I; the ghost
     velocity vg_w = -v~ (no-slip) or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf."""
+    vt = np.zeros(3)
     for w in range(n_query):
         if method[w] != WALL:
             continue
         sw = 0.0
         ps = 0.0
-        vt = np.zeros(3)
+        vt[:] = 0.0
         for k in range(start[w], start[w + 1]):
             f = index[k]
             if method[f] == WALL:
@@ -126,7 +138,20 @@ def wall_state(dim, kern, h, n_query, x, v, mass, rho, sigma, method, mat, start
 
 
 @njit
-def sph_rates(dim, kern, h, n_query, x, v, vg, mass, rho, sigma, cs, method, start, index,
+def pair_stress(dim_tag, n, sigma, rho, S):
+    """S_a = sigma_a / rho_a^2 as (xx, yy, zz, xy, yz, xz), for rows [0, n)."""
+    for a in range(n):
+        r2 = 1.0 / (rho[a] * rho[a])
+        S[a, 0] = sigma[a, 0, 0] * r2
+        S[a, 1] = sigma[a, 1, 1] * r2
+        S[a, 2] = sigma[a, 2, 2] * r2
+        S[a, 3] = sigma[a, 0, 1] * r2
+        S[a, 4] = sigma[a, 1, 2] * r2
+        S[a, 5] = sigma[a, 0, 2] * r2
+
+
+@njit
+def sph_rates(dim_tag, kern, h, n_query, x, v, vg, mass, rho, S, cs, method, start, index,
               av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping, acc, drho, L,
               want_force):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
@@ -134,107 +159,117 @@ def sph_rates(dim, kern, h, n_query, x, v, vg, mass, rho, sigma, cs, method, sta
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
     (eq. 2.9 before symmetrisation, with 1/rho_a for m_b/rho_b: this is the velocity gradient
     whose stress power equals the work of the eq. 2.6 forces, so the semi-discrete energy is
-    conserved, and tr L = -drho/rho so rho det F stays constant), v~ the ghost velocity of a
-    wall neighbour. With `want_force` False only drho and L are computed.
+    conserved, and tr L = -drho/rho so rho det F stays constant), v~ = `vg`: the velocity, or
+    a wall neighbour's ghost velocity. With `want_force` False only drho and L are computed.
     Pi_ab = (-alpha c_ab eta + beta eta^2)/rho_ab when approaching, eta = h v_ab.x_ab /
-    (r^2 + 0.01 h^2) (eqs. 2.7-2.8, with the usual 0.01 h^2 against r -> 0)."""
+    (r^2 + 0.01 h^2) (eqs. 2.7-2.8, with the usual 0.01 h^2 against r -> 0).
+    S = sigma/rho^2 and R are symmetric 6-vectors (xx, yy, zz, xy, yz, xz).
+    `dim = len(dim_tag)` is a compile-time constant, so the unused components vanish."""
+    dim = len(dim_tag)
     eps2 = 0.01 * h * h
+    h4 = 4.0 * h * h
     for a in range(n_query):
         if method[a] != SPH:
             continue
-        ax = np.zeros(3)
+        a0 = a1 = a2 = 0.0
+        l00 = l01 = l02 = l10 = l11 = l12 = l20 = l21 = l22 = 0.0
         dr = 0.0
-        La = np.zeros((3, 3))
-        ra2 = 1.0 / (rho[a] * rho[a])
+        xa0 = x[a, 0]
+        xa1 = x[a, 1] if dim > 1 else 0.0
+        xa2 = x[a, 2] if dim > 2 else 0.0
+        va0 = v[a, 0]
+        va1 = v[a, 1] if dim > 1 else 0.0
+        va2 = v[a, 2] if dim > 2 else 0.0
+        sa0, sa1, sa2, sa3, sa4, sa5 = S[a, 0], S[a, 1], S[a, 2], S[a, 3], S[a, 4], S[a, 5]
         for k in range(start[a], start[a + 1]):
             b = index[k]
-            if b == a:
-                continue
-            xab0 = x[a, 0] - x[b, 0]
-            xab1 = x[a, 1] - x[b, 1] if dim > 1 else 0.0
-            xab2 = x[a, 2] - x[b, 2] if dim > 2 else 0.0
+            xab0 = xa0 - x[b, 0]
+            xab1 = xa1 - x[b, 1] if dim > 1 else 0.0
+            xab2 = xa2 - x[b, 2] if dim > 2 else 0.0
             r2 = xab0 * xab0 + xab1 * xab1 + xab2 * xab2
-            if r2 >= 4.0 * h * h or r2 == 0.0:
+            if r2 >= h4 or r2 == 0.0:
                 continue
             r = np.sqrt(r2)
             fr = kernel_dwdr(kern, dim, r, h) / r
             g0 = fr * xab0
             g1 = fr * xab1
             g2 = fr * xab2
-            vab0 = v[a, 0] - v[b, 0]
-            vab1 = v[a, 1] - v[b, 1] if dim > 1 else 0.0
-            vab2 = v[a, 2] - v[b, 2] if dim > 2 else 0.0
+            vab0 = va0 - v[b, 0]
+            vab1 = va1 - v[b, 1] if dim > 1 else 0.0
+            vab2 = va2 - v[b, 2] if dim > 2 else 0.0
             mb = mass[b]
             dr += mb * (vab0 * g0 + vab1 * g1 + vab2 * g2)
-            # velocity gradient (walls: their ghost velocity)
-            wb = mb
-            if method[b] == WALL:
-                u0 = vg[b, 0] - v[a, 0]
-                u1 = vg[b, 1] - v[a, 1] if dim > 1 else 0.0
-                u2 = vg[b, 2] - v[a, 2] if dim > 2 else 0.0
-            else:
-                u0 = -vab0
-                u1 = -vab1
-                u2 = -vab2
-            La[0, 0] += wb * u0 * g0
+            u0 = mb * (vg[b, 0] - va0)
+            l00 += u0 * g0
             if dim > 1:
-                La[0, 1] += wb * u0 * g1
-                La[1, 0] += wb * u1 * g0
-                La[1, 1] += wb * u1 * g1
+                u1 = mb * (vg[b, 1] - va1)
+                l01 += u0 * g1
+                l10 += u1 * g0
+                l11 += u1 * g1
             if dim > 2:
-                La[0, 2] += wb * u0 * g2
-                La[1, 2] += wb * u1 * g2
-                La[2, 0] += wb * u2 * g0
-                La[2, 1] += wb * u2 * g1
-                La[2, 2] += wb * u2 * g2
+                u2 = mb * (vg[b, 2] - va2)
+                l02 += u0 * g2
+                l12 += u1 * g2
+                l20 += u2 * g0
+                l21 += u2 * g1
+                l22 += u2 * g2
             if not want_force:
                 continue
-            # artificial viscosity
             vx = vab0 * xab0 + vab1 * xab1 + vab2 * xab2
             pi = 0.0
             if vx < 0.0:
                 eta = h * vx / (r2 + eps2)
                 pi = (-av_alpha * 0.5 * (cs[a] + cs[b]) * eta + av_beta * eta * eta) / (
                     0.5 * (rho[a] + rho[b]))
-            rb2 = 1.0 / (rho[b] * rho[b])
-            fab = 0.0
+            t0 = sa0 + S[b, 0] - pi
+            t1 = sa1 + S[b, 1] - pi if dim > 1 else 0.0
+            t2 = sa2 + S[b, 2] - pi if dim > 2 else 0.0
+            t3 = sa3 + S[b, 3] if dim > 1 else 0.0
+            t4 = sa4 + S[b, 4] if dim > 2 else 0.0
+            t5 = sa5 + S[b, 5] if dim > 2 else 0.0
             if use_as:
-                fab = (kernel_w(kern, dim, r, h) / w_dp) ** as_n
-            for i in range(dim):
-                t0 = sigma[a, i, 0] * ra2 + sigma[b, i, 0] * rb2
-                t1 = sigma[a, i, 1] * ra2 + sigma[b, i, 1] * rb2 if dim > 1 else 0.0
-                t2 = sigma[a, i, 2] * ra2 + sigma[b, i, 2] * rb2 if dim > 2 else 0.0
-                if use_as:
-                    t0 += fab * (R[a, i, 0] + R[b, i, 0])
-                    if dim > 1:
-                        t1 += fab * (R[a, i, 1] + R[b, i, 1])
-                    if dim > 2:
-                        t2 += fab * (R[a, i, 2] + R[b, i, 2])
-                if i == 0:
-                    t0 -= pi
-                elif i == 1:
-                    t1 -= pi
-                else:
-                    t2 -= pi
-                ax[i] += mb * (t0 * g0 + t1 * g1 + t2 * g2)
+                f = (kernel_w(kern, dim, r, h) / w_dp) ** as_n
+                t0 += f * (R[a, 0] + R[b, 0])
+                if dim > 1:
+                    t1 += f * (R[a, 1] + R[b, 1])
+                    t3 += f * (R[a, 3] + R[b, 3])
+                if dim > 2:
+                    t2 += f * (R[a, 2] + R[b, 2])
+                    t4 += f * (R[a, 4] + R[b, 4])
+                    t5 += f * (R[a, 5] + R[b, 5])
+            a0 += mb * (t0 * g0 + t3 * g1 + t5 * g2)
+            if dim > 1:
+                a1 += mb * (t3 * g0 + t1 * g1 + t4 * g2)
+            if dim > 2:
+                a2 += mb * (t5 * g0 + t4 * g1 + t2 * g2)
         if want_force:
-            for i in range(dim):
-                acc[a, i] = ax[i] + gravity[i] - damping * v[a, i]
+            acc[a, 0] = a0 + gravity[0] - damping * va0
+            if dim > 1:
+                acc[a, 1] = a1 + gravity[1] - damping * va1
+            if dim > 2:
+                acc[a, 2] = a2 + gravity[2] - damping * va2
         drho[a] = dr
-        for i in range(3):
-            for j in range(3):
-                L[a, i, j] = La[i, j] / rho[a]
+        ir = 1.0 / rho[a]
+        L[a, 0, 0] = l00 * ir
+        L[a, 0, 1] = l01 * ir
+        L[a, 0, 2] = l02 * ir
+        L[a, 1, 0] = l10 * ir
+        L[a, 1, 1] = l11 * ir
+        L[a, 1, 2] = l12 * ir
+        L[a, 2, 0] = l20 * ir
+        L[a, 2, 1] = l21 * ir
+        L[a, 2, 2] = l22 * ir
 
 
 @njit
 def sph_stress(dim, n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mparams,
                sigma, vol, mass):
-    """Stress, volume (m/rho) of owned SPH rows; fluids take F = J^(1/dim) I with
-    J = rho0/rho (continuity density); material state restarts from `mstate_in`
-    (the state at the step start) so multi-stage integrators commit it once.
-    Returns the first row with a NaN or non-positive J, or -1."""
+    """Stress and volume (m/rho) of owned SPH rows. A fluid's state is its continuity
+    density: its F is set to diag(J, 1, 1) with J = rho0/rho (the Tait stress and energy
+    depend on det F only), a solid's stress comes from its integrated F. The material state
+    restarts from `mstate_in` (the state at the step start) so that multi-stage integrators
+    commit it once. Returns the first row with a NaN or non-positive J, or -1."""
     bad = -1
-    Fe = np.eye(3)
     La = np.zeros((3, 3))
     for a in range(n):
         if method[a] != SPH:
@@ -242,27 +277,20 @@ def sph_stress(dim, n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mp
         mi = mat[a]
         for s in range(mstate.shape[1]):
             mstate[a, s] = mstate_in[a, s]
+        Fa = F[a]
         if mtypes[mi] == TAIT_FLUID:
             J = mparams[mi, 2] / rho[a]
-            if not J > 0.0:
-                bad = a if bad < 0 else bad
-                continue
-            c = J ** (1.0 / dim)
-            for i in range(3):
-                for j in range(3):
-                    Fe[i, j] = 0.0
-                    F[a, i, j] = 0.0
-                Fe[i, i] = c if i < dim else 1.0
-                F[a, i, i] = Fe[i, i]
-            Fa = Fe
+            Fa[0, 0] = J
+            Fa[1, 1] = 1.0
+            Fa[2, 2] = 1.0
+            Fa[0, 1] = Fa[1, 0] = Fa[0, 2] = Fa[2, 0] = Fa[1, 2] = Fa[2, 1] = 0.0
         else:
-            Fa = F[a]
             J = (Fa[0, 0] * (Fa[1, 1] * Fa[2, 2] - Fa[1, 2] * Fa[2, 1])
                  - Fa[0, 1] * (Fa[1, 0] * Fa[2, 2] - Fa[1, 2] * Fa[2, 0])
                  + Fa[0, 2] * (Fa[1, 0] * Fa[2, 1] - Fa[1, 1] * Fa[2, 0]))
-            if not J > 0.0:
-                bad = a if bad < 0 else bad
-                continue
+        if not J > 0.0:
+            bad = a if bad < 0 else bad
+            continue
         for i in range(3):
             for j in range(3):
                 La[i, j] = L[a, i, j]
@@ -274,10 +302,12 @@ def sph_stress(dim, n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mp
 
 
 @njit
-def advance(dim, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho, L):
+def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho, L):
     """y <- c0 y0 + c1 y + dtc f(y) for y = (x, v, rho, F), f = (v, acc, drho, L F), on
     owned SPH rows (walls stay put). One formula covers Euler, predictor-corrector and
     TVD-RK3 stages. Positions move with the velocity at the start of the stage."""
+    dim = len(dim_tag)
+    LF = np.zeros((3, 3))
     for a in range(n):
         if method[a] != SPH:
             continue
@@ -286,7 +316,6 @@ def advance(dim, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho
             v[a, d] = c0 * v0[a, d] + c1 * v[a, d] + dtc * acc[a, d]
             x[a, d] = xn
         rho[a] = c0 * r0[a] + c1 * rho[a] + dtc * drho[a]
-        LF = np.zeros((3, 3))
         for i in range(dim):
             for j in range(dim):
                 s = 0.0
@@ -299,9 +328,11 @@ def advance(dim, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho
 
 
 @njit
-def kick_drift(dim, n, method, dt, x, v, rho, F, acc, drho, L, kick):
+def kick_drift(dim_tag, n, method, dt, x, v, rho, F, acc, drho, L, kick):
     """Velocity Verlet pieces on owned SPH rows: kick v += dt/2 acc (kick=True), or
     drift x += dt v, rho += dt drho, F <- (I + dt L) F (kick=False)."""
+    dim = len(dim_tag)
+    Fn = np.zeros((3, 3))
     for a in range(n):
         if method[a] != SPH:
             continue
@@ -312,7 +343,6 @@ def kick_drift(dim, n, method, dt, x, v, rho, F, acc, drho, L, kick):
         for d in range(dim):
             x[a, d] += dt * v[a, d]
         rho[a] += dt * drho[a]
-        Fn = np.zeros((3, 3))
         for i in range(dim):
             for j in range(dim):
                 s = F[a, i, j]

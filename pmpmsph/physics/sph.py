@@ -16,15 +16,19 @@ and the halo is refreshed at every evaluation.
 import numpy as np
 
 from ..kernels.neighbours import neighbour_lists
-from ..kernels.sph import (SPH, WALL, advance, artificial_stress, first_outside, kick_drift,
-                           sound_speeds, sph_rates, sph_stress, wall_state)
+from ..kernels.sph import (advance, artificial_stress, first_outside, kick_drift, pair_stress,
+                           sound_speeds, sph_rates, sph_stress, sync_ghost_velocity,
+                           wall_state)
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..particles import FieldSpec
 from ..timing import Timers
 
-#: extra halo width beyond the kernel support, in units of h: owned particles may have moved
-#: up to CFL * h past their slab face since the last migration
-HALO_MARGIN = 1.0
+#: extra halo width beyond the kernel support and the skin, in units of h: owned particles
+#: may move up to CFL * h past their slab face within a step (migration comes at its end)
+HALO_MARGIN = 0.5
+#: Verlet skin of the neighbour lists, in units of h: lists (and the halo's membership) are
+#: kept until some particle has moved half the skin since they were built
+SKIN = 0.25
 
 
 class SPHStage:
@@ -37,6 +41,8 @@ class SPHStage:
         self.kern = spec.kernel_code
         self.h = spec.h
         self.radius = SUPPORT * self.h
+        self.skin = SKIN * self.h
+        self.dim_tag = (0,) * self.dim
         self.integrator = spec.integrator
         self.mtypes, self.mparams = materials
         self.gravity = np.zeros(3)
@@ -53,8 +59,11 @@ class SPHStage:
         self.hi = np.array(case.domain[1], float)
         self.start = np.zeros(1, np.int64)
         self.index = np.zeros(0, np.int64)
+        self.x_build = None     # owned positions when the lists were built (None: rebuild)
+        self.n_total_build = 0
         self.evaluated = False
         self.evaluations = 0
+        self.rebuilds = 0
 
     @staticmethod
     def fields(case):
@@ -66,11 +75,12 @@ class SPHStage:
             FieldSpec("drho", ()),
             FieldSpec("L", (3, 3)),
             FieldSpec("cs", (), migrate=False),
+            FieldSpec("S", (6,), migrate=False),
         ]
         if any(b.wall for b in case.bodies):
             out.append(FieldSpec("vg", ("dim",), migrate=False, halo=True))
         if case.sph.artificial_stress > 0:
-            out.append(FieldSpec("R", (3, 3), migrate=False))
+            out.append(FieldSpec("R", (6,), migrate=False))
         if multi:
             out += [FieldSpec("x_n", ("dim",), migrate=False),
                     FieldSpec("v_n", ("dim",), migrate=False),
@@ -82,7 +92,13 @@ class SPHStage:
         from ..parallel.particle_halo import ParticleHalo
 
         self.dec = decomposition
-        self.halo = ParticleHalo(decomposition, self.p, (SUPPORT + HALO_MARGIN) * self.h)
+        self.halo = ParticleHalo(decomposition, self.p,
+                                 (SUPPORT + SKIN + HALO_MARGIN) * self.h)
+        self.invalidate()
+
+    def invalidate(self):
+        """Owned rows changed (migration, balancing, sorting): rebuild lists and halo."""
+        self.x_build = None
 
     # -- one evaluation ------------------------------------------------------------------------
     def _mstate(self, n):
@@ -94,47 +110,79 @@ class SPHStage:
         needs them at the half-step velocity): halo velocities refreshed, same lists."""
         p, t = self.p, self.timers
         n = p.n_owned
+        if "vg" in p:
+            sync_ghost_velocity(n, p["method"], p["v"], p["vg"])
         if self.halo_enabled:
             with t.phase("halo"):
                 self.halo.refresh(("v",) + (("vg",) if "vg" in p else ()))
         with t.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates(self.dim, self.kern, self.h, n, p.with_halo("x"), p.with_halo("v"), vg,
-                      p.with_halo("mass"), p.with_halo("rho"), p.with_halo("sigma"),
+            sph_rates(self.dim_tag, self.kern, self.h, n, p.with_halo("x"), p.with_halo("v"),
+                      vg, p.with_halo("mass"), p.with_halo("rho"), p.with_halo("S"),
                       p.with_halo("cs"), p.with_halo("method"), self.start, self.index, 0.0,
-                      0.0, False, np.zeros((0, 3, 3)), 1.0, 1.0, self.gravity, 0.0,
+                      0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
                       p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False)
+
+    def _need_rebuild(self):
+        """Collective: rebuild if the rows changed or a particle moved half the skin."""
+        p = self.p
+        need = self.x_build is None or len(self.x_build) != p.n_owned
+        if not need and p.n_owned:
+            d = p["x"] - self.x_build
+            need = float(np.max(np.einsum("ij,ij->i", d, d))) > 0.25 * self.skin ** 2
+        if self.halo_enabled and self.dist.size > 1:
+            need = self.dist.any(need)
+        return need
+
+    def _update_neighbours(self):
+        p, t = self.p, self.timers
+        if self._need_rebuild():
+            if self.halo_enabled:
+                with t.phase("halo"):
+                    self.halo.exchange()
+            with t.phase("neighbours"):
+                self.start, self.index = neighbour_lists(p.with_halo("x"), p.n_owned,
+                                                         self.radius + self.skin)
+            self.x_build = p["x"].copy()
+            self.n_total_build = p.n_total
+            self.rebuilds += 1
+        else:
+            # the halo rows are still in place behind the owned ones (the caller only hid
+            # them for migration, which moved nothing here): refresh them in the same plan
+            p.n_total = self.n_total_build
+            if self.halo_enabled:
+                with t.phase("halo"):
+                    self.halo.refresh(self.halo.names)
 
     def evaluate(self):
         """Rates (acc, drho, L) of owned SPH particles at the current state."""
         p, t = self.p, self.timers
-        if self.halo_enabled:
-            with t.phase("halo"):
-                self.halo.exchange()
+        self._update_neighbours()
         n, nt = p.n_owned, p.n_total
-        with t.phase("neighbours"):
-            self.start, self.index = neighbour_lists(p.with_halo("x"), n, self.radius)
         x = p.with_halo("x")
-        with t.phase("sph"):
-            if "vg" in p:
+        if "vg" in p:
+            with t.phase("sph"):
+                sync_ghost_velocity(nt, p.with_halo("method"), p.with_halo("v"),
+                                    p.with_halo("vg"))
                 wall_state(self.dim, self.kern, self.h, n, x, p.with_halo("v"),
                            p.with_halo("mass"), p.with_halo("rho"), p.with_halo("sigma"),
                            p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
                            self.mtypes, self.mparams, self.gravity, self.no_slip,
                            p.with_halo("vg"))
-        if "vg" in p and self.halo_enabled:
-            with t.phase("halo"):
-                self.halo.refresh(("rho", "sigma", "vg"))
+            if self.halo_enabled:
+                with t.phase("halo"):
+                    self.halo.refresh(("rho", "sigma", "vg"))
         with t.phase("sph"):
             rho, sigma = p.with_halo("rho"), p.with_halo("sigma")
             sound_speeds(self.dim, nt, p.with_halo("method"), p.with_halo("mat"), rho,
                          p.with_halo("F"), self.mtypes, self.mparams, p.with_halo("cs"))
-            R = p.with_halo("R") if self.use_as else np.zeros((0, 3, 3))
+            pair_stress(self.dim_tag, nt, sigma, rho, p.with_halo("S"))
+            R = p.with_halo("R") if self.use_as else np.zeros((0, 6))
             if self.use_as:
                 artificial_stress(self.dim, nt, sigma, rho, self.spec.artificial_stress, R)
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates(self.dim, self.kern, self.h, n, x, p.with_halo("v"), vg,
-                      p.with_halo("mass"), rho, sigma, p.with_halo("cs"),
+            sph_rates(self.dim_tag, self.kern, self.h, n, x, p.with_halo("v"), vg,
+                      p.with_halo("mass"), rho, p.with_halo("S"), p.with_halo("cs"),
                       p.with_halo("method"), self.start, self.index, self.spec.av_alpha,
                       self.spec.av_beta, self.use_as, R, self.spec.artificial_stress_exponent,
                       self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
@@ -163,6 +211,7 @@ class SPHStage:
         p = self.p
         neighbour_lists(np.zeros((2, self.dim)), 2, 1.0)
         self.halo_enabled = False
+        self.x_build = None
         try:
             self.evaluate()
             self.kinematics()
@@ -170,13 +219,14 @@ class SPHStage:
             n = 0
             if "x_n" in p:
                 self._advance(0.0, 1.0, 0.0)
-            kick_drift(self.dim, n, p["method"], 0.0, p["x"], p["v"], p["rho"], p["F"],
+            kick_drift(self.dim_tag, n, p["method"], 0.0, p["x"], p["v"], p["rho"], p["F"],
                        p["acc"], p["drho"], p["L"], True)
             first_outside(self.dim, n, p["x"], self.lo, self.hi)
         finally:
             self.halo_enabled = True
             self.evaluated = False
-            self.evaluations = 0
+            self.evaluations = self.rebuilds = 0
+            self.x_build = None
 
     # -- integrators ---------------------------------------------------------------------------
     def _save(self):
@@ -188,7 +238,7 @@ class SPHStage:
         p = self.p
         n = p.n_owned
         with self.timers.phase("integrate"):
-            advance(self.dim, n, p["method"], c0, p["x_n"], p["v_n"], p["rho_n"], p["F_n"], c1,
+            advance(self.dim_tag, n, p["method"], c0, p["x_n"], p["v_n"], p["rho_n"], p["F_n"], c1,
                     dtc, p["x"], p["v"], p["rho"], p["F"], p["acc"], p["drho"], p["L"])
 
     def step(self, dt, time):
@@ -201,16 +251,16 @@ class SPHStage:
         bad = -1
         if self.integrator == "verlet":
             with self.timers.phase("integrate"):
-                kick_drift(self.dim, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
+                kick_drift(self.dim_tag, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
                            p["acc"], p["drho"], p["L"], True)
             self.kinematics()
             with self.timers.phase("integrate"):
-                kick_drift(self.dim, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
+                kick_drift(self.dim_tag, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
                            p["acc"], p["drho"], p["L"], False)
             bad = self.stress(dt, m0)
             self.evaluate()
             with self.timers.phase("integrate"):
-                kick_drift(self.dim, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
+                kick_drift(self.dim_tag, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
                            p["acc"], p["drho"], p["L"], True)
         elif self.integrator == "predictor_corrector":
             self._save()

@@ -48,3 +48,38 @@ def loaded_bar(shape="gimp", transfer="usf"):
         dict(body="bar", box=dict(min=[0.9, 0.1], max=[0.95, 0.3]), velocity=["free", 0.0],
              until=0.01))
     return sc
+
+
+def sph_bar_1d(integrator="rk3"):
+    """BENCHMARKS.md scene 8 in pure SPH (seed 000 §5.1): copper bar on [0, 1], spacing 0.05,
+    h = 1.3 spacing, v(x, 0) = 0.01 c sin(10 pi x) set by the caller, Courant number 0.1."""
+    sc = Scene(1, domain=dict(min=[-0.5], max=[1.5]), time=dict(end=1.0, cfl=0.1),
+               sph=dict(h_factor=1.3, integrator=integrator,
+                        viscosity=dict(alpha=0.0, beta=0.0)),
+               parallel=dict(balance_every=0))
+    sc.material("copper", model="linear_elastic", E=128e9, nu=0.3, rho=8790.0)
+    sc.body(name="bar", method="sph", material="copper", shape="box", min=[0.0], max=[1.0],
+            spacing=0.05)
+    return sc
+
+
+def sph_dam_break(dx=0.05, integrator="predictor_corrector", walls="slip", balance_every=0,
+                  axis="y"):
+    """The SPH dam break of cases/sph_dam_break.toml at a coarse spacing: 1 x 2 water
+    column in a 4 wide tank (walls 2.5 high: the water stays below in the first 0.3 s),
+    dummy-particle walls (4 layers), Tait water, alpha = 0.1. Slabs along y by default, so
+    the falling column crosses the slab faces at once."""
+    sc = Scene(2, domain=dict(min=[-0.3, -0.3], max=[4.3, 2.6]), gravity=[0, -9.81],
+               time=dict(end=1.0, cfl=0.125),
+               sph=dict(h_factor=1.3, integrator=integrator, walls=walls,
+                        viscosity=dict(alpha=0.1, beta=0.0)),
+               parallel=dict(axis=axis, balance_every=balance_every))
+    sc.material("water", model="tait", rho=1000.0, kappa=560571.4, gamma=7.0, mu=0.0)
+    sc.body(name="water", method="sph", material="water", shape="box", min=[0, 0],
+            max=[1, 2], spacing=dx)
+    w = 4 * dx
+    for name, lo, hi in (("floor", [0, -w], [4, 0]), ("left", [-w, -w], [0, 2.5]),
+                         ("right", [4, -w], [4 + w, 2.5])):
+        sc.body(name=name, method="sph", wall=True, material="water", shape="box", min=lo,
+                max=hi, spacing=dx)
+    return sc
