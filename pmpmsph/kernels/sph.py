@@ -42,6 +42,48 @@ def sound_speeds(dim, n, method, mat, rho, F, mtypes, mparams, cs):
 
 
 @njit
+def sym_eig3(A):
+    """Eigenvalues w and eigenvectors (columns of V) of a symmetric 3x3 matrix by cyclic
+    Jacobi rotations (no LAPACK needed; converges to round-off in a few sweeps)."""
+    M = np.empty((3, 3))
+    V = np.eye(3)
+    for i in range(3):
+        for j in range(3):
+            M[i, j] = 0.5 * (A[i, j] + A[j, i])
+    for sweep in range(30):
+        off = M[0, 1] ** 2 + M[0, 2] ** 2 + M[1, 2] ** 2
+        scale = M[0, 0] ** 2 + M[1, 1] ** 2 + M[2, 2] ** 2
+        if off <= 1e-30 * scale or off == 0.0:
+            break
+        for p in range(2):
+            for q in range(p + 1, 3):
+                if M[p, q] == 0.0:
+                    continue
+                theta = 0.5 * np.arctan2(2.0 * M[p, q], M[q, q] - M[p, p])
+                c = np.cos(theta)
+                s = np.sin(theta)
+                for k in range(3):  # M <- M J
+                    mkp = M[k, p]
+                    mkq = M[k, q]
+                    M[k, p] = c * mkp - s * mkq
+                    M[k, q] = s * mkp + c * mkq
+                for k in range(3):  # M <- J^T M
+                    mpk = M[p, k]
+                    mqk = M[q, k]
+                    M[p, k] = c * mpk - s * mqk
+                    M[q, k] = s * mpk + c * mqk
+                for k in range(3):
+                    vkp = V[k, p]
+                    vkq = V[k, q]
+                    V[k, p] = c * vkp - s * vkq
+                    V[k, q] = s * vkp + c * vkq
+    w = np.empty(3)
+    for i in range(3):
+        w[i] = M[i, i]
+    return w, V
+
+
+@njit
 def artificial_stress(dim, n, sigma, rho, eps, R):
     """R_a = -eps sigma'_ii / rho^2 on the tensile principal stresses, rotated back
     (Gray, Monaghan & Swift 2001, eqs. 23-25); zero for compressive ones. R is stored as
@@ -69,7 +111,7 @@ def artificial_stress(dim, n, sigma, rho, eps, R):
             R[a, 1] = sn * sn * r1 + c * c * r2
             R[a, 3] = c * sn * (r1 - r2)
             continue
-        w, V = np.linalg.eigh(np.ascontiguousarray(sigma[a]))
+        w, V = sym_eig3(sigma[a])
         for k in range(3):
             if w[k] > 0.0:
                 rk = s * w[k]
@@ -328,30 +370,75 @@ def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, 
 
 
 @njit
-def kick_drift(dim_tag, n, method, dt, x, v, rho, F, acc, drho, L, kick):
-    """Velocity Verlet pieces on owned SPH rows: kick v += dt/2 acc (kick=True), or
-    drift x += dt v, rho += dt drho, F <- (I + dt L) F (kick=False)."""
+def kick(dim_tag, n, method, dt_half, v, acc):
+    """Velocity Verlet kick v += dt/2 acc on owned SPH rows."""
     dim = len(dim_tag)
-    Fn = np.zeros((3, 3))
+    for a in range(n):
+        if method[a] == SPH:
+            for d in range(dim):
+                v[a, d] += dt_half * acc[a, d]
+
+
+@njit
+def drift(dim_tag, n, method, dt_half, x, v):
+    """Half a drift x += dt/2 v on owned SPH rows."""
+    dim = len(dim_tag)
+    for a in range(n):
+        if method[a] == SPH:
+            for d in range(dim):
+                x[a, d] += dt_half * v[a, d]
+
+
+@njit
+def cayley_update(dim_tag, n, method, dt, rho, F, drho, L):
+    """rho <- rho + dt drho and F <- (I - dt/2 L')^-1 (I + dt/2 L') F with drho and L taken
+    at the mid-step positions and half-step velocities, L' = L rho/rho_mid (L was computed
+    with 1/rho at the step start; rho_mid = rho + dt/2 drho): the implicit midpoint rule
+    for dF/dt = L F. Every input is symmetric in the step's two ends, so reversing the
+    velocities retraces the step exactly and the Verlet step stays time-reversible."""
+    dim = len(dim_tag)
+    A = np.zeros((3, 3))
+    B = np.zeros((3, 3))
+    inv = np.zeros((3, 3))
     for a in range(n):
         if method[a] != SPH:
             continue
-        if kick:
-            for d in range(dim):
-                v[a, d] += 0.5 * dt * acc[a, d]
-            continue
-        for d in range(dim):
-            x[a, d] += dt * v[a, d]
+        scale = rho[a] / (rho[a] + 0.5 * dt * drho[a])
         rho[a] += dt * drho[a]
-        for i in range(dim):
+        for i in range(3):
+            for j in range(3):
+                e = 1.0 if i == j else 0.0
+                l = 0.5 * dt * scale * L[a, i, j] if (i < dim and j < dim) else 0.0
+                A[i, j] = e - l
+                B[i, j] = e + l
+        # A^-1 by cofactors (A is near the identity)
+        c00 = A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1]
+        c01 = A[1, 2] * A[2, 0] - A[1, 0] * A[2, 2]
+        c02 = A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]
+        det = A[0, 0] * c00 + A[0, 1] * c01 + A[0, 2] * c02
+        inv[0, 0] = c00 / det
+        inv[1, 0] = c01 / det
+        inv[2, 0] = c02 / det
+        inv[0, 1] = (A[0, 2] * A[2, 1] - A[0, 1] * A[2, 2]) / det
+        inv[1, 1] = (A[0, 0] * A[2, 2] - A[0, 2] * A[2, 0]) / det
+        inv[2, 1] = (A[0, 1] * A[2, 0] - A[0, 0] * A[2, 1]) / det
+        inv[0, 2] = (A[0, 1] * A[1, 2] - A[0, 2] * A[1, 1]) / det
+        inv[1, 2] = (A[0, 2] * A[1, 0] - A[0, 0] * A[1, 2]) / det
+        inv[2, 2] = (A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]) / det
+        for i in range(dim):       # M = A^-1 B (in A)
             for j in range(dim):
-                s = F[a, i, j]
+                acc_ = 0.0
                 for k in range(dim):
-                    s += dt * L[a, i, k] * F[a, k, j]
-                Fn[i, j] = s
-        for i in range(dim):
-            for j in range(dim):
-                F[a, i, j] = Fn[i, j]
+                    acc_ += inv[i, k] * B[k, j]
+                A[i, j] = acc_
+        for j in range(dim):       # F <- M F, column by column (B as scratch)
+            for i in range(dim):
+                acc_ = 0.0
+                for k in range(dim):
+                    acc_ += A[i, k] * F[a, k, j]
+                B[i, 0] = acc_
+            for i in range(dim):
+                F[a, i, j] = B[i, 0]
 
 
 @njit

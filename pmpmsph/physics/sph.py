@@ -7,7 +7,9 @@ One *evaluation* of the rates at the current state is:
     -> dummy wall particles take the fluid's extrapolated pressure (then a halo refresh)
     -> sound speeds, artificial stress -> rates (acc, drho/dt, L) of owned SPH particles.
 The integrators combine evaluations:
-    verlet               kick v(dt/2) -> drift x, rho, F -> stress -> evaluate -> kick
+    verlet               kick v(dt/2) -> drift x(dt/2) -> drho, L there -> F, rho by the
+                         implicit midpoint rule -> drift x(dt/2) -> stress -> evaluate -> kick
+                         (time-reversible: reversing all velocities retraces the run)
     predictor_corrector  y* = y + dt/2 f(prev) -> stress -> evaluate f* -> y = y + dt f*
                          (Monaghan's midpoint predictor-corrector, one evaluation per step)
     rk3                  TVD Runge-Kutta of Shu & Osher (seed 004, §5), three evaluations
@@ -16,9 +18,9 @@ and the halo is refreshed at every evaluation.
 import numpy as np
 
 from ..kernels.neighbours import neighbour_lists
-from ..kernels.sph import (advance, artificial_stress, first_outside, kick_drift, pair_stress,
-                           sound_speeds, sph_rates, sph_stress, sync_ghost_velocity,
-                           wall_state)
+from ..kernels.sph import (advance, artificial_stress, cayley_update, drift, first_outside,
+                           kick, pair_stress, sound_speeds, sph_rates, sph_stress,
+                           sync_ghost_velocity, wall_state)
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..particles import FieldSpec
 from ..timing import Timers
@@ -106,15 +108,16 @@ class SPHStage:
         return p["mstate"][:n] if "mstate" in p else np.zeros((n, 0))
 
     def kinematics(self):
-        """drho and L only, at unchanged positions with new velocities (the Verlet drift
-        needs them at the half-step velocity): halo velocities refreshed, same lists."""
+        """drho and L only, at the current positions and velocities (the Verlet step needs
+        them at mid-step): halo positions/velocities refreshed, lists kept (the skin covers
+        the half drift)."""
         p, t = self.p, self.timers
         n = p.n_owned
         if "vg" in p:
             sync_ghost_velocity(n, p["method"], p["v"], p["vg"])
         if self.halo_enabled:
             with t.phase("halo"):
-                self.halo.refresh(("v",) + (("vg",) if "vg" in p else ()))
+                self.halo.refresh(("x", "v") + (("vg",) if "vg" in p else ()))
         with t.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
             sph_rates(self.dim_tag, self.kern, self.h, n, p.with_halo("x"), p.with_halo("v"),
@@ -219,8 +222,10 @@ class SPHStage:
             n = 0
             if "x_n" in p:
                 self._advance(0.0, 1.0, 0.0)
-            kick_drift(self.dim_tag, n, p["method"], 0.0, p["x"], p["v"], p["rho"], p["F"],
-                       p["acc"], p["drho"], p["L"], True)
+            kick(self.dim_tag, n, p["method"], 0.0, p["v"], p["acc"])
+            drift(self.dim_tag, n, p["method"], 0.0, p["x"], p["v"])
+            cayley_update(self.dim_tag, n, p["method"], 0.0, p["rho"], p["F"], p["drho"],
+                          p["L"])
             first_outside(self.dim, n, p["x"], self.lo, self.hi)
         finally:
             self.halo_enabled = True
@@ -250,18 +255,18 @@ class SPHStage:
         m0 = self._mstate(n).copy()
         bad = -1
         if self.integrator == "verlet":
+            tag, meth = self.dim_tag, p["method"]
             with self.timers.phase("integrate"):
-                kick_drift(self.dim_tag, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
-                           p["acc"], p["drho"], p["L"], True)
+                kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
+                drift(tag, n, meth, 0.5 * dt, p["x"], p["v"])
             self.kinematics()
             with self.timers.phase("integrate"):
-                kick_drift(self.dim_tag, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
-                           p["acc"], p["drho"], p["L"], False)
+                cayley_update(tag, n, meth, dt, p["rho"], p["F"], p["drho"], p["L"])
+                drift(tag, n, meth, 0.5 * dt, p["x"], p["v"])
             bad = self.stress(dt, m0)
             self.evaluate()
             with self.timers.phase("integrate"):
-                kick_drift(self.dim_tag, n, p["method"], dt, p["x"], p["v"], p["rho"], p["F"],
-                           p["acc"], p["drho"], p["L"], True)
+                kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
         elif self.integrator == "predictor_corrector":
             self._save()
             self._advance(0.0, 1.0, 0.5 * dt)     # predictor with the last rates
