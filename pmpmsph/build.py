@@ -6,6 +6,12 @@ from .particles import FieldSpec, ParticleSet
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
 from .physics.sph import SPHStage
+from .physics.tlsph import TLSPHStage
+
+
+def sph_stage_class(case):
+    """The SPH stage of a scene: updated-Lagrangian (seed 000) or total (seed 004)."""
+    return TLSPHStage if case.sph.formulation == "total" else SPHStage
 from .scene.seeding import seed_body
 
 #: `method` field codes (kernels.sph uses the same numbers)
@@ -45,8 +51,10 @@ def build_particles(case, keep=None):
         for spec in MPMStage.fields(case):
             ps.declare(spec)
     if case.has_sph:
-        for spec in SPHStage.fields(case):
+        for spec in sph_stage_class(case).fields(case):
             ps.declare(spec)
+        if case.sph.formulation == "total":
+            ps.copy_to_halo("vol0")
     mats = list(case.materials.values())
     mat_names = list(case.materials)
     state_size = max(m.state_size for m in mats)
@@ -85,6 +93,8 @@ def build_particles(case, keep=None):
         }
         if "rho" in ps:
             vals["rho"] = np.full(n, mat.rho0)
+        if "X0" in ps:
+            vals["X0"] = x
         if body.wall:
             vals["v"] = np.zeros((n, dim))
         if body.stress:
@@ -99,6 +109,8 @@ def build_particles(case, keep=None):
             st = np.zeros((n, state_size))
             st[:, : mat.state_size] = mat.initial_state()
             vals["mstate"] = st
+            if "mstate0" in ps:
+                vals["mstate0"] = st
         if case.loads:
             vals["fext0"] = TractionLoads.seed(case.loads, bi, x, vol, spacing, body.name, dim)
         if case.prescribed:

@@ -75,6 +75,13 @@ class ParticleSet:
         elif spec.fill:
             arr[...] = spec.fill
 
+    def copy_to_halo(self, name):
+        """Also copy an already declared field to halo particles (e.g. vol0 for
+        total-Lagrangian SPH, whose neighbours sum reference volumes)."""
+        from dataclasses import replace
+
+        self.specs[name] = replace(self.specs[name], halo=True)
+
     def __contains__(self, name):
         return name in self.arrays
 

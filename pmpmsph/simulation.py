@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-from .build import build_particles, material_arrays
+from .build import build_particles, material_arrays, sph_stage_class
 from .errors import ConfigError, RunError
 from .kernels.diagnostics import max_signal_speed, particle_sums
 from .parallel.decomposition import Decomposition
@@ -20,7 +20,6 @@ from .parallel.balance import LoadBalancer
 from .parallel.migration import migrate, migrate_all
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
-from .physics.sph import SPHStage
 from .timing import Timers
 
 log = logging.getLogger("pmpmsph")
@@ -59,8 +58,9 @@ class Simulation:
         self.gravity[: self.dim] = case.gravity
         self.mpm = (MPMStage(case, self.particles, self.materials, self.decomposition,
                              self.timers) if case.has_mpm else None)
-        self.sph = (SPHStage(case, self.particles, self.materials, self.decomposition,
-                             self.dist, self.timers) if case.has_sph else None)
+        self.sph = (sph_stage_class(case)(case, self.particles, self.materials,
+                                          self.decomposition, self.dist, self.timers)
+                    if case.has_sph else None)
         self.migrated = 0
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)

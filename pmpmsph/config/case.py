@@ -51,6 +51,8 @@ class SPHSpec:
     formulation: str = "updated"       # updated (Gray-Monaghan) | total (seed 004)
     correction: bool = True            # total: Liu's full kernel correction (eqs. 1-3)
     deformation: str = "reference"     # total: F by eq. 8 (reference) or eq. 9 (rate)
+    force: str = "current"             # total: eq. 5 in the current configuration (seed) or
+                                       # in the reference one with P = J sigma F^-T
     integrator: str = "predictor_corrector"
     av_alpha: float = 1.0              # artificial viscosity (seed 000, eq. 2.7)
     av_beta: float = 1.0
@@ -133,6 +135,7 @@ class OutputSpec:
     diagnostics_every: int = 1          # steps between diagnostics rows
     fields: tuple = ("gid", "body", "x", "v", "mass", "vol", "rho", "sigma", "F")
     folder: str = "output"
+    checkpoint_every: int = 0           # steps between checkpoints (0: only on signal/failure)
 
 
 @dataclass(frozen=True)

@@ -3,6 +3,7 @@
 Every error is a `ConfigError` naming the dotted TOML key; the CLI turns it into one line
 and exit status 2 on every rank.
 """
+import contextvars
 import copy
 import math
 import tomllib
@@ -10,6 +11,7 @@ import tomllib
 from ..errors import ConfigError
 from ..materials import material_from_table
 from ..scene.geometry import Box, Disc, Polygon
+from ..scene.mesh import MeshGeometry, mesh_geometry
 from .case import (BC_KINDS, CONTACTS, METHODS, SHAPES, SPH_FORMULATIONS, SPH_INTEGRATORS,
                    SPH_KERNELS, TRANSFERS, BodySpec, BoundarySpec, Case, GridSpec, LoadSpec,
                    MPMSpec, OutputSpec, ParallelSpec, PrescribedSpec, Region, SPHSpec,
@@ -17,6 +19,8 @@ from .case import (BC_KINDS, CONTACTS, METHODS, SHAPES, SPH_FORMULATIONS, SPH_IN
 from .table import Table
 
 FACES = ("x-", "x+", "y-", "y+", "z-", "z+")
+#: folder that relative paths in a case (mesh files) are taken from: the case file's folder
+CASE_DIR = contextvars.ContextVar("pmpmsph_case_dir", default=None)
 
 
 def parse_set(assignments):
@@ -54,13 +58,18 @@ def apply_overrides(data, overrides):
     return data
 
 
-def load_case_text(text, name="case", overrides=()):
+def load_case_text(text, name="case", overrides=(), base_dir=None):
+    """`base_dir`: folder of relative paths in the case (mesh files); default the cwd."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError("<toml>", f"not valid TOML: {exc}") from None
     data = apply_overrides(data, overrides)
-    return case_from_dict(data, name=name, text=text)
+    token = CASE_DIR.set(base_dir)
+    try:
+        return case_from_dict(data, name=name, text=text)
+    finally:
+        CASE_DIR.reset(token)
 
 
 def load_case_file(path, overrides=()):
@@ -72,7 +81,8 @@ def load_case_file(path, overrides=()):
     except OSError as exc:
         raise ConfigError("<file>", f"cannot read {path}: {exc.strerror}") from None
     name = os.path.splitext(os.path.basename(path))[0]
-    return load_case_text(text, name=name, overrides=overrides)
+    return load_case_text(text, name=name, overrides=overrides,
+                          base_dir=os.path.dirname(os.path.abspath(path)))
 
 
 # -- pieces -----------------------------------------------------------------------------------
@@ -110,7 +120,9 @@ def _region(t, dim, required=True):
 
 
 def _geometry(t, dim):
-    shape = t.string("shape", choices=("box", "disc", "circle", "sphere", "polygon"))
+    shape = t.string("shape", choices=("box", "disc", "circle", "sphere", "polygon", "mesh"))
+    if shape == "mesh":  # elements of a mesh file read with meshio (scene/mesh.py)
+        return mesh_geometry(t, dim, CASE_DIR.get())
     if shape == "box":
         lo = t.vector("min", dim)
         hi = t.vector("max", dim)
@@ -151,6 +163,8 @@ def _body(t, dim, materials, grid):
                           f"{', '.join(materials) or 'none'}")
     geom = _geometry(t, dim)
     given = [k for k in ("ppc", "spacing", "count") if t.has(k)]
+    if isinstance(geom, MeshGeometry):  # seeded per element (`ppe`, read with the mesh)
+        given = MeshGeometry.check_body(t, method, given)
     if len(given) != 1:
         raise ConfigError(t.key("ppc"), "give exactly one of ppc, spacing or count")
     ppc = spacing = count = None
@@ -160,7 +174,7 @@ def _body(t, dim, materials, grid):
             raise ConfigError(t.key("ppc"), "ppc needs a [grid]")
     elif given[0] == "spacing":
         spacing = t.vector("spacing", dim, positive=True, scalar_ok=True)
-    else:
+    elif given[0] == "count":
         if not isinstance(geom, Box):
             raise ConfigError(t.key("count"), "count is for box bodies; use ppc or spacing")
         count = t.vector("count", dim, integer=True, positive=True, scalar_ok=True)
@@ -213,6 +227,7 @@ def _sph(t, dim, bodies, materials):
         formulation=t.string("formulation", "updated", choices=SPH_FORMULATIONS),
         correction=t.boolean("correction", True),
         deformation=t.string("deformation", "reference", choices=("reference", "rate")),
+        force=t.string("force", "current", choices=("current", "reference")),
         integrator=integrator, av_alpha=av_alpha, av_beta=av_beta,
         artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
@@ -390,7 +405,8 @@ def case_from_dict(data, name="case", text=""):
         raise ConfigError(ot.key("fields"), "expected a list of field names")
     output = OutputSpec(every=every, every_steps=every_steps,
                         diagnostics_every=ot.number("diagnostics_every", 1, integer=True, min=1),
-                        fields=tuple(fields), folder=ot.string("folder", "output"))
+                        fields=tuple(fields), folder=ot.string("folder", "output"),
+                        checkpoint_every=ot.number("checkpoint_every", 0, integer=True, min=0))
     ot.finish()
     pt = root.sub("parallel", {})
     axis = pt.string("axis", "auto", choices=("auto",) + tuple("xyz"[:dim]))

@@ -344,6 +344,19 @@ def sph_stress(dim, n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mp
 
 
 @njit
+def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
+    """Stress of rows [0, n) from their F (total-Lagrangian SPH: owned and halo rows alike,
+    each with its material state restarted by the caller)."""
+    La = np.zeros((3, 3))
+    for a in range(n):
+        mi = mat[a]
+        for i in range(3):
+            for j in range(3):
+                La[i, j] = L[a, i, j]
+        compute_stress(mtypes[mi], F[a], La, dt, mstate[a], mparams[mi], sigma[a])
+
+
+@njit
 def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho, L):
     """y <- c0 y0 + c1 y + dtc f(y) for y = (x, v, rho, F), f = (v, acc, drho, L F), on
     owned SPH rows (walls stay put). One formula covers Euler, predictor-corrector and

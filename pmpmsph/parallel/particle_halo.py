@@ -15,12 +15,12 @@ TAG_HALO_REFRESH = 33
 
 
 class ParticleHalo:
-    def __init__(self, decomposition, particles, width):
+    def __init__(self, decomposition, particles, width, check=True):
         self.dec = decomposition
         self.particles = particles
         self.width = float(width)
         thinnest = np.diff(decomposition.faces).min() * decomposition.dx
-        if decomposition.size > 1 and self.width > thinnest:
+        if check and decomposition.size > 1 and self.width > thinnest:
             # a halo must come from the two neighbours only
             raise ValueError(f"halo width {self.width:g} exceeds the thinnest slab {thinnest:g}")
         self.names = particles.fields(halo=True)

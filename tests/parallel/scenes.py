@@ -83,3 +83,30 @@ def sph_dam_break(dx=0.05, integrator="predictor_corrector", walls="slip", balan
         sc.body(name=name, method="sph", wall=True, material="water", shape="box", min=lo,
                 max=hi, spacing=dx)
     return sc
+
+
+def tl_plate(n=21, corrected=True, eta=None, integrator="rk3", force="current",
+             deformation="reference", k_h=1.4, cfl=0.3):
+    """BENCHMARKS.md scene 12 (seed 004 §6.1): 1 x 1 mm plane-strain plate, Hartmann-Neff
+    neo-Hookean mu = 1.25 MPa, k = 5.833 MPa, rho = 3, free surface, total-Lagrangian SPH
+    with n x n particles (h = k_h x spacing). The caller sets v1 = 0.8 x2 (`shear_velocity`).
+    With `eta`: the Maxwell body of scene 13."""
+    sc = Scene(2, domain=dict(min=[-1.0, -1.0], max=[3.0, 2.0]),
+               time=dict(end=1.2, cfl=cfl),
+               sph=dict(formulation="total", correction=corrected, h_factor=k_h,
+                        integrator=integrator, force=force, deformation=deformation),
+               parallel=dict(axis="x", balance_every=0))
+    if eta is None:
+        sc.material("rubber", model="hartmann_neff", mu=1.25, k=5.833, rho=3.0)
+    else:
+        sc.material("rubber", model="maxwell", mu=1.25, k=5.833, rho=3.0, eta=eta)
+    sc.body(name="plate", method="sph", material="rubber", shape="box", min=[0.0, 0.0],
+            max=[1.0, 1.0], count=[n, n])
+    return sc
+
+
+def shear_velocity(sim, rate=0.8):
+    """Initial simple-shear velocity v1 = rate x2, v2 = 0 (seed 004, eq. 19)."""
+    p = sim.particles
+    p["v"][:, 0] = rate * p["x"][:, 1]
+    p["v"][:, 1] = 0.0

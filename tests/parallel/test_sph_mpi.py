@@ -51,3 +51,20 @@ def test_sph_dam_break_equals_one_rank(walls, balance, axis):
     ref.run(max_steps=1000)
     assert dist.sum(sim.migrated) > 0
     _compare(dist, sim, ref)
+
+
+@pytest.mark.parametrize("kw", [dict(), dict(force="reference", integrator="verlet"),
+                                dict(eta=0.2, integrator="predictor_corrector"),
+                                dict(deformation="rate")])
+def test_tl_plate_equals_one_rank(kw):
+    from scenes import shear_velocity, tl_plate
+
+    dist = world()
+    sim = tl_plate(n=11, **kw).simulation(dist=dist)
+    ref = tl_plate(n=11, **kw).simulation(dist=serial())
+    shear_velocity(sim)
+    shear_velocity(ref)
+    sim.run(max_steps=60)
+    ref.run(max_steps=60)
+    assert dist.sum(sim.migrated) > 0
+    _compare(dist, sim, ref)

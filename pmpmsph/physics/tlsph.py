@@ -1,0 +1,234 @@
+"""TLSPHStage: corrected-kernel SPH for solids after seed 004 (Shutov & Klyuchantsev 2019).
+
+State (x, v) and, with ``deformation = "rate"``, F; each *evaluation* at a state does
+    halo exchange (width: two kernel supports times the largest stretch, so that every
+        particle an owned one sums over has its own complete neighbour list here)
+    -> reference lists on X0 + corrected reference gradients G0 (eqs. 1-3), once while the
+       rows do not change
+    -> F by eq. 8 (``reference``) for every row, or the integrated F (``rate``)
+    -> stress of every row from F (material state restarted from its value at the step
+       start: multi-stage integrators commit it once per step)
+    -> the internal force eq. 5 — in the current configuration with the corrected kernel
+       recomputed there (``force = "current"``, the seed's choice) or in the reference one
+       with P = J sigma F^-T (``force = "reference"``, the exact adjoint of eq. 8)
+    -> L by eq. 6 when eq. 9 or the current force needs the current configuration
+and the integrators (TVD-RK3 as in seed 004 §5, predictor-corrector, Verlet) combine them.
+The forces are scatters over all listed rows, so halo rows take part with their own lists.
+See `pmpmsph.kernels.tlsph` for the index conventions and the stability findings.
+"""
+import numpy as np
+
+from ..errors import RunError
+from ..kernels.neighbours import neighbour_lists
+from ..kernels.sph import advance, drift, first_outside, kick
+from ..kernels.sph_kernels import SUPPORT
+from ..kernels.tlsph import (deformation_gradient, first_piola, internal_force,
+                             kernel_correction, velocity_gradient)
+from ..particles import FieldSpec
+from .sph import HALO_MARGIN, SPHStage
+
+
+class TLSPHStage(SPHStage):
+    """Total-Lagrangian SPH (seed 004) with the integrators of `SPHStage`."""
+
+    @staticmethod
+    def fields(case):
+        state = max((m.state_size for m in case.materials.values()), default=0)
+        out = [
+            FieldSpec("X0", ("dim",), halo=True, output=True),
+            FieldSpec("rho", (), halo=True, output=True),
+            FieldSpec("acc", ("dim",)),
+            FieldSpec("drho", ()),
+            FieldSpec("L", (3, 3)),
+            FieldSpec("force", ("dim",), migrate=False),
+            FieldSpec("x_n", ("dim",), migrate=False),
+            FieldSpec("v_n", ("dim",), migrate=False),
+            FieldSpec("rho_n", (), migrate=False),
+            FieldSpec("F_n", (3, 3), migrate=False, fill="identity"),
+        ]
+        if state:
+            out.append(FieldSpec("mstate0", (state,), halo=True))
+        return out
+
+    def __init__(self, case, particles, materials, decomposition, dist, timers=None):
+        self.stretch = 1.0
+        super().__init__(case, particles, materials, decomposition, dist, timers)
+        spec = case.sph
+        self.corrected = spec.correction
+        self.rate = spec.deformation == "rate"
+        self.current_force = spec.force == "current"
+        self.ref = None  # (start0, index0, gw0) of the reference configuration
+
+    def set_decomposition(self, decomposition):
+        from ..parallel.particle_halo import ParticleHalo
+
+        self.dec = decomposition
+        self.halo = ParticleHalo(decomposition, self.p, self._halo_width(), check=False)
+        self.invalidate()
+
+    def invalidate(self):
+        self.x_build = None
+        self.ref = None
+
+    def _halo_width(self):
+        """Two kernel supports (the neighbours' own lists) times the largest stretch."""
+        return 2.0 * SUPPORT * self.h * self.stretch * 1.1 + HALO_MARGIN * self.h
+
+    def _max_stretch(self):
+        """Largest principal stretch of the owned F (global), for the halo width."""
+        F = self.p["F"]
+        if len(F) == 0:
+            s = 1.0
+        else:
+            d = self.dim
+            C = np.einsum("nki,nkj->nij", F[:, :d, :d], F[:, :d, :d])
+            s = float(np.sqrt(np.max(np.linalg.eigvalsh(C)))) if d > 1 else float(
+                np.max(np.abs(F[:, 0, 0])))
+        return self.dist.max(s) if self.halo_enabled and self.dist.size > 1 else s
+
+    # -- one evaluation ------------------------------------------------------------------------
+    def _exchange(self):
+        p, t = self.p, self.timers
+        if self.dist.size == 1 or not self.halo_enabled:
+            if self.ref is None:
+                p.drop_halo()
+            else:
+                p.n_total = self.n_total_build
+            return
+        with t.phase("halo"):
+            self.stretch = self._max_stretch()
+            self.halo.width = self._halo_width()
+            thinnest = np.diff(self.dec.faces).min() * self.dec.dx
+            if self.halo.width > thinnest:
+                raise RunError(-1, -1, f"total-Lagrangian SPH needs a halo of "
+                               f"{self.halo.width:.3g} (two kernel supports x stretch "
+                               f"{self.stretch:.3g}), thicker than the thinnest slab "
+                               f"{thinnest:.3g}: use fewer ranks or a larger [domain]")
+            self.halo.exchange()
+        self.ref = None  # the halo rows changed
+
+    def _reference(self):
+        """Reference lists and corrected gradients G0 for every row (once per halo)."""
+        p = self.p
+        if self.ref is not None:
+            return self.ref
+        X0 = p.with_halo("X0")
+        nt = p.n_total
+        with self.timers.phase("neighbours"):
+            start, index = neighbour_lists(X0, nt, SUPPORT * self.h)
+        with self.timers.phase("sph"):
+            gw0 = np.empty((len(index), self.dim))
+            wt0 = np.empty(len(index))
+            kernel_correction(X0, p.with_halo("vol0"), start, index, self.h, self.kern,
+                              self.dim, self.corrected, wt0, gw0)
+        self.ref = (start, index, gw0)
+        self.n_total_build = nt
+        self.rebuilds += 1
+        return self.ref
+
+    def evaluate(self, dt_state=0.0):
+        """Accelerations of the owned particles at the current state (and F, stress, L)."""
+        p, t = self.p, self.timers
+        self._exchange()
+        start0, index0, gw0 = self._reference()
+        nt, n = p.n_total, p.n_owned
+        x, v, F = p.with_halo("x"), p.with_halo("v"), p.with_halo("F")
+        vol0, vol = p.with_halo("vol0"), p.with_halo("vol")
+        with t.phase("sph"):
+            if not self.rate:
+                deformation_gradient(start0, index0, gw0, vol0, x, p.with_halo("X0"),
+                                     self.dim, F)
+            J = np.linalg.det(F)
+            vol[:] = J * vol0
+            p.with_halo("rho")[:] = p.with_halo("mass") / vol
+            if np.any(~(J > 0)):
+                bad = int(np.nonzero(~(J > 0))[0][0])
+                self._bad = bad if bad < n else -1
+            need_current = self.current_force or self.rate
+            if need_current:
+                start, index = neighbour_lists(x, nt, SUPPORT * self.h)
+                gw = np.empty((len(index), self.dim))
+                wt = np.empty(len(index))
+                kernel_correction(x, vol, start, index, self.h, self.kern, self.dim,
+                                  self.corrected, wt, gw)
+                velocity_gradient(start, index, gw, vol, v, self.dim, p.with_halo("L"))
+            mstate = p.with_halo("mstate") if "mstate" in p else np.zeros((nt, 0))
+            m0 = p.with_halo("mstate0") if "mstate0" in p else mstate
+            mstate[:] = m0
+            from ..kernels.sph import sph_stress_all
+
+            sph_stress_all(nt, p.with_halo("mat"), F, p.with_halo("L"), dt_state, mstate,
+                           self.mtypes, self.mparams, p.with_halo("sigma"))
+            f = p.with_halo("force")
+            if self.current_force:
+                internal_force(start, index, gw, vol, p.with_halo("sigma"), self.dim, f)
+            else:
+                P = np.empty((nt, 3, 3))
+                first_piola(F, p.with_halo("sigma"), P)
+                internal_force(start0, index0, gw0, vol0, P, self.dim, f)
+            acc = p["acc"]
+            acc[:] = f[:n] / p["mass"][:, None] + self.gravity[: self.dim]
+            if self.spec.damping:
+                acc -= self.spec.damping * p["v"]
+        self.evaluated = True
+        self.evaluations += 1
+
+    def initialise(self):
+        self._bad = -1
+        self.evaluate(0.0)
+
+    def stress(self, dt, mstate_in):  # the stress is part of every evaluation here
+        return -1
+
+    def warm_up(self):
+        p = self.p
+        neighbour_lists(np.zeros((2, self.dim)), 2, 1.0)
+        self.halo_enabled = False
+        try:
+            self.evaluate(0.0)
+            if "x_n" in p:
+                self._advance(0.0, 1.0, 0.0)
+            kick(self.dim_tag, 0, p["method"], 0.0, p["v"], p["acc"])
+            drift(self.dim_tag, 0, p["method"], 0.0, p["x"], p["v"])
+            first_outside(self.dim, 0, p["x"], self.lo, self.hi)
+        finally:
+            self.halo_enabled = True
+            self.evaluated = False
+            self.evaluations = self.rebuilds = 0
+            self.invalidate()
+
+    # -- integrators ---------------------------------------------------------------------------
+    def step(self, dt, time):
+        p = self.p
+        n = p.n_owned
+        self._bad = -1
+        if not self.evaluated:
+            self.initialise()
+        if "mstate0" in p:  # commit the material state of the last step
+            p["mstate0"][...] = p["mstate"]
+        if self.integrator == "verlet":
+            tag, meth = self.dim_tag, p["method"]
+            with self.timers.phase("integrate"):
+                kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
+                drift(tag, n, meth, dt, p["x"], p["v"])
+            self.evaluate(dt)
+            with self.timers.phase("integrate"):
+                kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
+        elif self.integrator == "predictor_corrector":
+            self._save()
+            self._advance(0.0, 1.0, 0.5 * dt)
+            self.evaluate(0.5 * dt)
+            self._advance(1.0, 0.0, dt)
+            self.evaluate(dt)
+        else:  # TVD-RK3
+            self._save()
+            self._advance(0.0, 1.0, dt)
+            self.evaluate(dt)
+            self._advance(0.75, 0.25, 0.25 * dt)
+            self.evaluate(0.5 * dt)
+            self._advance(1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0 * dt)
+            self.evaluate(dt)
+        bad = self._bad
+        if bad < 0:
+            bad = first_outside(self.dim, n, p["x"], self.lo, self.hi)
+        return bad
