@@ -147,6 +147,10 @@ class Simulation:
     def signal_speed(self):
         p = self.particles
         n = p.n_owned
+        if self.mpm is None and self.sph is not None:
+            c = self.sph.signal_speed()
+            if c is not None:
+                return self.dist.max(c)
         mtypes, mparams = self.materials
         c = max_signal_speed(self.dim, p["v"][:n], p["F"][:n], p["mat"][:n], mtypes, mparams)
         return self.dist.max(c)

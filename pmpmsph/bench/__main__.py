@@ -17,7 +17,9 @@ def main(argv=None):
     ap = argparse.ArgumentParser(prog="python -m pmpmsph.bench")
     sub = ap.add_subparsers(dest="command", required=True)
     tp = sub.add_parser("throughput", help="particle-steps/s against the peers")
-    tp.add_argument("method", choices=["mpm"])
+    tp.add_argument("method", choices=["mpm", "sph"])
+    tp.add_argument("--dx", type=float, nargs="+", default=[0.02],
+                    help="sph: particle spacing(s) of the dam break")
     tp.add_argument("--n-grid", type=int, nargs="+", default=[128, 256])
     tp.add_argument("--steps", type=int, default=400)
     tp.add_argument("--repeat", type=int, default=3)
@@ -48,6 +50,8 @@ def main(argv=None):
 
     if args.install_peers:
         install_peers()
+    if args.method == "sph":
+        return throughput_sph(args, run_peer)
     results = {"ours": [], "peers": [], "small": None}
     print(f"{'program':<28}{'n_grid':>7}{'particles':>11}{'M particle-steps/s':>20}")
     for n_grid in args.n_grid:
@@ -74,6 +78,38 @@ def main(argv=None):
                     print(f"  n_grid {r['n_grid']}: / {p['peer']}: {r['rate'] / p['rate']:.2f}")
     os.makedirs(args.out, exist_ok=True)
     path = os.path.join(args.out, "throughput_mpm.json")
+    with open(path, "w") as fh:
+        json.dump(results, fh, indent=1)
+    print(f"written {path}")
+    return 0
+
+
+def throughput_sph(args, run_peer):
+    """Our SPH dam break against PySPH's at the same dx, in one invocation."""
+    from .throughput import bench_sph
+
+    results = {"ours": [], "peers": []}
+    print(f"{'program':<28}{'dx':>7}{'particles':>11}{'M particle-steps/s':>20}")
+    for dx in args.dx:
+        r = bench_sph(dx, args.steps, args.repeat)
+        results["ours"].append(r)
+        print(f"{'pmpmsph (WCSPH, PEC)':<28}{dx:>7}{r['particles']:>11}"
+              f"{r['rate'] / 1e6:>20.2f}", flush=True)
+        ph = r["phases"]
+        print("   phases per step (ms): " + ", ".join(
+            f"{k} {1e3 * v / max(1, 4 * args.steps + 20):.3f}" for k, v in sorted(ph.items())
+            if k not in ("setup", "jit_warmup", "run")))
+        if args.no_peers:
+            continue
+        rate, note = run_peer("pysph_dam_break.sh", [dx, args.steps])
+        results["peers"].append({"peer": "pysph_dam_break.sh", "dx": dx, "rate": rate,
+                                 "note": note})
+        shown = f"{rate / 1e6:>20.2f}" if rate else f"  ({note})"
+        print(f"{'pysph dam_break_2d':<28}{dx:>7}{'':>11}{shown}", flush=True)
+        if rate:
+            print(f"  ratio ours / PySPH at dx {dx}: {r['rate'] / rate:.2f}")
+    os.makedirs(args.out, exist_ok=True)
+    path = os.path.join(args.out, "throughput_sph.json")
     with open(path, "w") as fh:
         json.dump(results, fh, indent=1)
     print(f"written {path}")

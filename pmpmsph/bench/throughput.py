@@ -7,6 +7,10 @@ gamma = 1 and kappa = E = 400 (the peers' p = -E (J - 1) to first order) and wal
 only inflow, like the peers'. We carry what a real solver carries (full F, Cauchy stress,
 material dispatch, boundary conditions), the peers only J and C.
 small: BENCHMARKS.md scene 1 (10 particles) in steps per second, for the per-step overhead.
+sph: the dam break of ../shared/peers/pysph_dam_break.sh (PySPH examples/dam_break_2d.py,
+WCSPH): cases/sph_dam_break.toml at the same dx, h = 1.3 dx, c0, alpha and integrator
+(predictor-corrector), timed from the state after `warmup` steps; all particles (water and
+wall) count, as in PySPH's figure.
 """
 import time
 
@@ -59,3 +63,23 @@ def bench_small(steps=20000):
     el, warm = time_simulation(sim, steps, warmup=100, repeat=1)
     return {"particles": sim.particles.n_owned, "steps": steps, "seconds": el,
             "steps_per_s": steps / el}
+
+
+def bench_sph(dx=0.02, steps=500, repeat=3, warmup=20):
+    import os
+
+    from ..config import load_case_file
+    from ..simulation import Simulation
+
+    here = os.path.dirname(os.path.abspath(__file__))
+    path = os.path.join(here, "..", "..", "cases", "sph_dam_break.toml")
+    sets = [(f"bodies[{i}].spacing", dx) for i in range(4)]
+    w = 4 * dx
+    sets += [("bodies[1].min", [0.0, -w]), ("bodies[2].min", [-w, -w]),
+             ("bodies[3].max", [4.0 + w, 4.0]), ("time.end", 1e9)]
+    sim = Simulation(load_case_file(path, overrides=sets))
+    n = sim.particles.n_owned
+    el, warm = time_simulation(sim, steps, warmup=warmup, repeat=repeat)
+    return {"dx": dx, "particles": n, "steps": steps, "seconds": el, "rate": n * steps / el,
+            "warmup_s": warm, "phases": sim.timers.as_dict(),
+            "rebuilds": sim.sph.rebuilds, "evaluations": sim.sph.evaluations}

@@ -32,6 +32,11 @@ def sound_speeds(dim, n, method, mat, rho, F, mtypes, mparams, cs):
     for a in range(n):
         mi = mat[a]
         if mtypes[mi] == TAIT_FLUID:
+            if mparams[mi, 1] == 7.0:  # c^2 = kappa gamma/rho0 (rho/rho0)^6, no log/exp
+                r = rho[a] / mparams[mi, 2]
+                r2 = r * r
+                cs[a] = np.sqrt(7.0 * mparams[mi, 0] / mparams[mi, 2] * r2 * r2 * r2)
+                continue
             J = mparams[mi, 2] / rho[a]
         else:
             F_ = F[a]
@@ -193,21 +198,24 @@ def pair_stress(dim_tag, n, sigma, rho, S):
 
 
 @njit
-def sph_rates(dim_tag, kern, h, n_query, x, v, vg, mass, rho, S, cs, method, start, index,
+def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, start, index,
               av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping, acc, drho, L,
-              want_force):
+              want_force, want_L):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
     (eq. 2.9 before symmetrisation, with 1/rho_a for m_b/rho_b: this is the velocity gradient
     whose stress power equals the work of the eq. 2.6 forces, so the semi-discrete energy is
     conserved, and tr L = -drho/rho so rho det F stays constant), v~ = `vg`: the velocity, or
-    a wall neighbour's ghost velocity. With `want_force` False only drho and L are computed.
+    a wall neighbour's ghost velocity. With `want_force` False only drho and L are computed;
+    with `want_L` False L is not (inviscid fluids need no velocity gradient).
     Pi_ab = (-alpha c_ab eta + beta eta^2)/rho_ab when approaching, eta = h v_ab.x_ab /
     (r^2 + 0.01 h^2) (eqs. 2.7-2.8, with the usual 0.01 h^2 against r -> 0).
     S = sigma/rho^2 and R are symmetric 6-vectors (xx, yy, zz, xy, yz, xz).
-    `dim = len(dim_tag)` is a compile-time constant, so the unused components vanish."""
+    `dim = len(dim_tag)` and `kern = len(kern_tag) - 1` are compile-time constants, so the
+    unused components and the other kernel vanish from the machine code."""
     dim = len(dim_tag)
+    kern = len(kern_tag) - 1
     eps2 = 0.01 * h * h
     h4 = 4.0 * h * h
     for a in range(n_query):
@@ -241,20 +249,21 @@ def sph_rates(dim_tag, kern, h, n_query, x, v, vg, mass, rho, S, cs, method, sta
             vab2 = va2 - v[b, 2] if dim > 2 else 0.0
             mb = mass[b]
             dr += mb * (vab0 * g0 + vab1 * g1 + vab2 * g2)
-            u0 = mb * (vg[b, 0] - va0)
-            l00 += u0 * g0
-            if dim > 1:
-                u1 = mb * (vg[b, 1] - va1)
-                l01 += u0 * g1
-                l10 += u1 * g0
-                l11 += u1 * g1
-            if dim > 2:
-                u2 = mb * (vg[b, 2] - va2)
-                l02 += u0 * g2
-                l12 += u1 * g2
-                l20 += u2 * g0
-                l21 += u2 * g1
-                l22 += u2 * g2
+            if want_L:
+                u0 = mb * (vg[b, 0] - va0)
+                l00 += u0 * g0
+                if dim > 1:
+                    u1 = mb * (vg[b, 1] - va1)
+                    l01 += u0 * g1
+                    l10 += u1 * g0
+                    l11 += u1 * g1
+                if dim > 2:
+                    u2 = mb * (vg[b, 2] - va2)
+                    l02 += u0 * g2
+                    l12 += u1 * g2
+                    l20 += u2 * g0
+                    l21 += u2 * g1
+                    l22 += u2 * g2
             if not want_force:
                 continue
             vx = vab0 * xab0 + vab1 * xab1 + vab2 * xab2
@@ -452,6 +461,21 @@ def cayley_update(dim_tag, n, method, dt, rho, F, drho, L):
                 B[i, 0] = acc_
             for i in range(dim):
                 F[a, i, j] = B[i, 0]
+
+
+@njit
+def max_signal(dim_tag, n, cs, v):
+    """max over rows [0, n) of c + |v| (the CFL signal speed from the evaluation's c)."""
+    dim = len(dim_tag)
+    m = 0.0
+    for a in range(n):
+        s = 0.0
+        for d in range(dim):
+            s += v[a, d] * v[a, d]
+        c = cs[a] + np.sqrt(s)
+        if not c <= m:  # NaN propagates
+            m = c
+    return m
 
 
 @njit

@@ -45,6 +45,13 @@ class SPHStage:
         self.radius = SUPPORT * self.h
         self.skin = SKIN * self.h
         self.dim_tag = (0,) * self.dim
+        self.kern_tag = (0,) * (self.kern + 1)
+        # inviscid fluids alone need no velocity gradient (F follows from the density)
+        from ..materials.codes import TAIT_FLUID
+
+        mtypes, mparams = materials
+        self.want_L = not all(mtypes[i] == TAIT_FLUID and mparams[i, 3] == 0.0
+                              for i in range(len(mtypes)))
         self.integrator = spec.integrator
         self.mtypes, self.mparams = materials
         self.gravity = np.zeros(3)
@@ -120,11 +127,11 @@ class SPHStage:
                 self.halo.refresh(("x", "v") + (("vg",) if "vg" in p else ()))
         with t.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates(self.dim_tag, self.kern, self.h, n, p.with_halo("x"), p.with_halo("v"),
+            sph_rates(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"), p.with_halo("v"),
                       vg, p.with_halo("mass"), p.with_halo("rho"), p.with_halo("S"),
                       p.with_halo("cs"), p.with_halo("method"), self.start, self.index, 0.0,
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
-                      p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False)
+                      p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True)
 
     def _need_rebuild(self):
         """Collective: rebuild if the rows changed or a particle moved half the skin."""
@@ -184,12 +191,12 @@ class SPHStage:
             if self.use_as:
                 artificial_stress(self.dim, nt, sigma, rho, self.spec.artificial_stress, R)
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates(self.dim_tag, self.kern, self.h, n, x, p.with_halo("v"), vg,
+            sph_rates(self.dim_tag, self.kern_tag, self.h, n, x, p.with_halo("v"), vg,
                       p.with_halo("mass"), rho, p.with_halo("S"), p.with_halo("cs"),
                       p.with_halo("method"), self.start, self.index, self.spec.av_alpha,
                       self.spec.av_beta, self.use_as, R, self.spec.artificial_stress_exponent,
                       self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
-                      p.with_halo("drho"), p.with_halo("L"), True)
+                      p.with_halo("drho"), p.with_halo("L"), True, self.want_L)
         self.evaluated = True
         self.evaluations += 1
 
@@ -288,6 +295,16 @@ class SPHStage:
         if bad < 0:
             bad = first_outside(self.dim, n, p["x"], self.lo, self.hi)
         return bad
+
+    def signal_speed(self):
+        """Local max of c + |v| over owned particles, c from the last evaluation (None before
+        the first one: the caller then uses the material wave speeds)."""
+        if not self.evaluated or "cs" not in self.p:
+            return None
+        from ..kernels.sph import max_signal
+
+        p = self.p
+        return max_signal(self.dim_tag, p.n_owned, p["cs"], p["v"])
 
     def stable_dt(self):
         """Viscous limit 0.125 h^2 / nu of the fluids (CFL is handled by the caller)."""
