@@ -1,4 +1,5 @@
-"""Command line: `python -m pmpmsph CASE.toml`, `check`, `xdmf` (DESIGN.md §1).
+"""Command line: `python -m pmpmsph CASE.toml`, `--restart`, `check`, `xdmf`, `vtu`, `plot`
+(DESIGN.md §1, §6).
 
 Bad input ends every rank with one line naming the TOML key and exit status 2; a failure
 during the run ends every rank with step, particle and cause, output left readable, exit 3.
@@ -9,7 +10,7 @@ import os
 import sys
 import time
 
-from .errors import EXIT_CONFIG, EXIT_RUNTIME, ConfigError, RunError
+from .errors import EXIT_CONFIG, EXIT_RUNTIME, ConfigError, RunError, RunStopped
 
 log = logging.getLogger("pmpmsph")
 
@@ -17,9 +18,14 @@ log = logging.getLogger("pmpmsph")
 def _parser():
     p = argparse.ArgumentParser(prog="python -m pmpmsph",
                                 description="Coupled MPM-SPH solver. Commands: run (default), "
-                                "check, xdmf.")
-    p.add_argument("case", help="case file (TOML)")
-    p.add_argument("--out", help="output folder (default: output/<case name>)")
+                                "check, xdmf RUN.h5, vtu RUN, plot RUN.")
+    p.add_argument("case", nargs="?", help="case file (TOML); with --restart optional (the "
+                   "checkpoint holds the case)")
+    p.add_argument("--out", help="output folder (default: output/<case name>; with --restart "
+                   "the checkpoint's folder, whose particles.h5/diagnostics.csv are continued)")
+    p.add_argument("--restart", metavar="CHECKPOINT",
+                   help="continue from a checkpoint (e.g. output/NAME/checkpoint.h5) on any "
+                   "number of ranks")
     p.add_argument("--max-steps", type=int, default=None, help="stop after this many steps")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                    help="override a case value, e.g. --set mpm.shape=\"cubic\"")
@@ -33,7 +39,36 @@ def _parser():
 def _load(args):
     from .config import load_case_file, parse_set
 
+    if args.case is None:
+        raise ConfigError("<case>", "give a case file (or --restart CHECKPOINT)")
     return load_case_file(args.case, overrides=parse_set(args.set))
+
+
+def _load_for_restart(args, dist):
+    """The case of a restart: the case file if given, else the checkpoint's case text with
+    its stored --set overrides followed by this command's. Returns (case, overrides)."""
+    from .config import load_case_text, parse_set
+    from .io.checkpoint import read_header
+
+    head, err = None, None
+    if dist.is_root:
+        try:
+            head = read_header(args.restart)
+        except Exception as exc:  # noqa: BLE001 - bad input, reported below
+            err = f"cannot read checkpoint {args.restart}: {exc}"
+    head, err = dist.bcast((head, err))
+    if err:
+        raise ConfigError("--restart", err)
+    new = parse_set(args.set)
+    if args.case is not None:
+        return _load(args), new
+    if not head.get("case"):
+        raise ConfigError("--restart", "the checkpoint holds no case text (a scene built in "
+                          "Python): give the case file as well")
+    overrides = list(head["case_overrides"]) + new
+    case = load_case_text(head["case"], name=head.get("case_name", "case"),
+                          overrides=overrides, base_dir=head.get("case_dir") or None)
+    return case, overrides
 
 
 def _memory_estimate(sim):
@@ -64,21 +99,39 @@ def cmd_check(args, dist):
 
 
 def cmd_run(args, dist):
+    from .config import parse_set
+    from .io.checkpoint import STOP
     from .simulation import Simulation
 
     t0 = time.perf_counter()
-    case = _load(args)
-    out = None if args.no_output else (args.out or os.path.join("output", case.name))
-    sim = Simulation(case, dist=dist, out_dir=out, overwrite=args.overwrite)
+    if args.restart:
+        case, overrides = _load_for_restart(args, dist)
+        default_out = os.path.dirname(os.path.abspath(args.restart))
+    else:
+        case, overrides = _load(args), parse_set(args.set)
+        default_out = os.path.join("output", case.name)
+    out = None if args.no_output else (args.out or default_out)
+    sim = Simulation(case, dist=dist, out_dir=None if args.restart else out,
+                     overwrite=args.overwrite)
+    sim.case_overrides = tuple(overrides)
+    sim.case_dir = os.path.dirname(os.path.abspath(args.case)) if args.case else None
+    if args.restart:
+        head = sim.restore_checkpoint(args.restart)
+        if args.case is None:
+            sim.case_dir = head.get("case_dir") or None
+        if out:
+            appended = sim.open_restart_output(out, overwrite=args.overwrite)
+            log.info("restart output %s %s", "continues" if appended else "starts in", out)
     n = dist.sum(sim.particles.n_owned)
-    est = int(round(case.time.end / sim.dt))
+    est = int(round(max(case.time.end - sim.time, 0.0) / sim.dt))
     if args.max_steps is not None:
         est = min(est, args.max_steps)
     every = args.progress or max(est // 20, 1)
     log.info("pmpmsph: %s, %dD, %d particles, %d rank(s), dt %.3g, about %d steps%s", case.name,
              case.dim, n, dist.size, sim.dt, est, f", output in {out}" if out else "")
     try:
-        summary = sim.run(max_steps=args.max_steps, progress_every=every)
+        with STOP:  # SIGTERM/SIGINT/SIGUSR1: checkpoint + snapshot after the step, exit 3
+            summary = sim.run(max_steps=args.max_steps, progress_every=every)
     finally:
         sim.close()
     t = summary["timers"]
@@ -90,6 +143,12 @@ def cmd_run(args, dist):
     phases = {k: v for k, v in t.items() if k not in ("setup", "jit_warmup", "run")}
     if phases:
         log.info("phases: %s", ", ".join(f"{k} {v:.2f} s" for k, v in sorted(phases.items())))
+    if out and dist.is_root:
+        files = [f for f in ("particles.h5", "particles.xdmf", "diagnostics.csv",
+                             "checkpoint.h5") if os.path.exists(os.path.join(out, f))]
+        size = sum(os.path.getsize(os.path.join(out, f)) for f in files)
+        log.info("output: %s in %s (%.1f MiB); plot with: python -m pmpmsph plot %s",
+                 ", ".join(files), out, size / 2**20, out)
     return 0
 
 
@@ -107,6 +166,12 @@ def main(argv=None):
         from .io.xdmf import rebuild_xdmf_main
 
         return rebuild_xdmf_main(argv[1:]) if dist.is_root else 0
+    if argv and argv[0] in ("plot", "vtu"):
+        if argv[0] == "plot":
+            from .plot import main as tool
+        else:
+            from .io.vtu import main as tool
+        return tool(argv[1:]) if dist.is_root else 0
     command = cmd_run
     if argv and argv[0] in ("run", "check"):
         command = cmd_check if argv[0] == "check" else cmd_run
@@ -125,6 +190,10 @@ def main(argv=None):
     except RunError as exc:
         if dist.is_root:
             print(f"error: {exc}", file=sys.stderr)
+        return EXIT_RUNTIME
+    except RunStopped as exc:
+        if dist.is_root:
+            print(str(exc), file=sys.stderr, flush=True)
         return EXIT_RUNTIME
     except Exception:  # a bug or fault on this rank only: take every rank down, never hang
         import traceback

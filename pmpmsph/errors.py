@@ -32,3 +32,21 @@ class RunError(Exception):
     def __str__(self):
         who = f"particle gid {self.gid}" if self.gid >= 0 else "no single particle"
         return f"run failed at step {self.step} ({who}): {self.cause}"
+
+
+class RunStopped(Exception):
+    """The run was stopped by a signal at the end of a step, its state written (exit status 3)."""
+
+    def __init__(self, signame, step, time, checkpoint=None):
+        self.signame = signame
+        self.step = step
+        self.time = time
+        self.checkpoint = checkpoint
+        super().__init__(str(self))
+
+    def __str__(self):
+        msg = f"stopped by {self.signame} after step {self.step} (t = {self.time:.6g})"
+        if self.checkpoint:
+            return (f"{msg}; state written to {self.checkpoint}; continue with: "
+                    f"python -m pmpmsph --restart {self.checkpoint}")
+        return f"{msg}; no checkpoint written (no output folder)"

@@ -131,3 +131,29 @@ def read_diagnostics(path):
         # A crash can cut the last line short: keep the complete rows.
         body = [r for r in body if len(r) == len(header)]
     return {name: _column_array([r[i] for r in body]) for i, name in enumerate(header)}
+
+
+def truncate_rows(path, column, first_dropped):
+    """Drop the rows whose `column` is >= `first_dropped` (a restarted run rewrites them);
+    the file is replaced atomically. Nothing happens if the file or column is absent.
+    Returns the number of rows dropped."""
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        return 0
+    with open(path, newline="") as fh:
+        rows = list(csv.reader(fh))
+    if not rows or column not in rows[0]:
+        return 0
+    i = rows[0].index(column)
+    keep = [rows[0]]
+    for r in rows[1:]:
+        try:
+            if len(r) == len(rows[0]) and float(r[i]) < first_dropped:
+                keep.append(r)
+        except ValueError:
+            continue
+    tmp = f"{path}.tmp{os.getpid()}"
+    with open(tmp, "w", newline="") as fh:
+        csv.writer(fh, lineterminator="\n").writerows(keep)
+    os.replace(tmp, path)
+    return len(rows) - len(keep)

@@ -5,7 +5,8 @@ Layout of ``RUN.h5`` (the same whichever way it was written)::
     /                          attrs: format, layout, case (TOML text), code_version,
                                       n_ranks, plus the caller's extra attrs
     /snapshots/000000          attrs: index, time, step, counts (owned particles per rank),
-                                      n_total
+                                      n_total, n_ranks, layout (of this snapshot: a restarted
+                                      run may append with another rank count or layout)
     /snapshots/000000/<field>  dataset of global shape (n_total, ...), rank r's slice at
                                       offset sum(counts[:r]); fields in the order written
     /xdmf/polyvertex/<N>       0, 1, ..., N-1 (int32, int64 from 2**31 particles): the
@@ -29,6 +30,10 @@ Three ways of writing, chosen automatically (``mode="auto"``):
                  (same group/dataset names, local shape (n_r, ...)); rank 0 writes ``RUN.h5``
                  whose datasets are HDF5 virtual datasets joining the per-rank files (found
                  next to ``RUN.h5``; move them together).
+
+A restarted run continues the file (``append=True``): snapshots after the restart step are
+dropped, the numbering goes on, and the root ``layout`` becomes ``mixed`` if the new run
+writes differently (per-rank parts of earlier snapshots are kept and still referenced).
 
 The file is opened for each snapshot and closed again, so between writes it is complete on
 disk: a reader (ParaView, ``read_snapshot``) can open it while the run goes on or after a
@@ -122,7 +127,7 @@ class SnapshotWriter:
     """
 
     def __init__(self, dist, path, *, case_text="", attrs=None, overwrite=False, mode="auto",
-                 xdmf=True):
+                 xdmf=True, append=False, after_step=None):
         if mode not in MODES:
             raise ValueError(f"unknown snapshot mode {mode!r}, expected one of {MODES}")
         self.dist = dist
@@ -139,13 +144,20 @@ class SnapshotWriter:
         if dist.is_root:
             exists = os.path.exists(self.path) or bool(_rank_files_present(self.path))
         exists = dist.bcast(exists)
-        if exists and not overwrite:
+        self.appending = bool(append and exists and dist.bcast(os.path.exists(self.path)))
+        #: step of the last snapshot kept when appending (None: none kept / a new file)
+        self.last_step = None
+        if exists and not overwrite and not self.appending:
             raise FileExistsError(
                 f"output file {self.path} already exists (allow overwriting to replace it)")
 
         case_text = dist.bcast(case_text or "")
         attrs = dist.bcast(dict(attrs or {}))
-        self._on_root(lambda: self._create_main(exists, case_text, attrs))
+        if self.appending:
+            self._on_root(lambda: self._open_append(after_step))
+            self.index, self.last_step = dist.bcast((self.index, self.last_step))
+        else:
+            self._on_root(lambda: self._create_main(exists, case_text, attrs))
         if self.mode == "per-rank":
             self._collective(lambda: self._create_rank_file(), "creating the per-rank file")
         if self.mode == "per-rank" and dist.size > 1 and mode == "auto" and dist.is_root:
@@ -186,8 +198,35 @@ class SnapshotWriter:
             f.create_group(GROUP, track_order=True)
             f.create_group(TOPOLOGY)
 
+    def _open_append(self, after_step):
+        """Continue an existing file: drop snapshots after `after_step`, carry on numbering."""
+        with open_h5(self.path, "r+", libver=LIBVER) as f:
+            if f.attrs.get("format") != FORMAT or GROUP not in f:
+                raise ValueError(f"cannot append to {self.path}: not a pmpmsph snapshot file")
+            grp = f[GROUP]
+            names = sorted(grp.keys())
+            if after_step is not None:
+                for name in [n for n in names if int(grp[n].attrs["step"]) > after_step]:
+                    del grp[name]
+                names = sorted(grp.keys())
+            self.index = int(names[-1]) + 1 if names else 0
+            self.last_step = int(grp[names[-1]].attrs["step"]) if names else None
+            layout = f.attrs.get("layout")
+            layout = layout.decode() if isinstance(layout, bytes) else layout
+            if layout != self.mode:
+                f.attrs["layout"] = "mixed"
+            if TOPOLOGY not in f:
+                f.create_group(TOPOLOGY)
+        if self.xdmf:
+            from .xdmf import write_xdmf
+
+            write_xdmf(self.path, self.xdmf_path, cache=self._xdmf_cache)
+
     def _create_rank_file(self):
-        with open_h5(rank_file(self.path, self.dist.rank), "w", libver=LIBVER) as f:
+        path = rank_file(self.path, self.dist.rank)
+        if self.appending and os.path.exists(path):  # earlier snapshots live in it: keep them
+            return
+        with open_h5(path, "w", libver=LIBVER) as f:
             f.attrs["format"] = FORMAT
             f.attrs["layout"] = "per-rank part"
             f.attrs["rank"] = self.dist.rank
@@ -264,7 +303,8 @@ class SnapshotWriter:
         n_total = int(counts.sum())
         name = snapshot_name(self.index)
         meta = {"index": self.index, "time": float(time), "step": int(step),
-                "counts": counts, "n_total": n_total}
+                "counts": counts, "n_total": n_total, "n_ranks": self.dist.size,
+                "layout": self.mode}
 
         if self.mode == "mpio":
             self._collective(lambda: self._write_mpio(name, meta, arrays, offset, n_total),

@@ -6,6 +6,7 @@ Three ways, as a CB-Geo/Uintah user expects:
   spacing  a lattice of the given spacing starting half a spacing inside the bounding box;
   count    exactly count[a] particles per axis over the bounding box (thesis "20x20 points").
 Each particle carries the volume of its lattice cell, so the body's volume is the lattice's.
+Mesh bodies (`scene.mesh`) are seeded per element instead, with the elements' volumes.
 """
 import numpy as np
 
@@ -24,6 +25,8 @@ def _lattice(lo, hi, spacing):
 def seed_body(body, grid):
     """Return (x, vol, spacing) for one body: positions (n, dim), volumes (n,), spacing (dim,)."""
     geom = body.geometry
+    if hasattr(geom, "seed"):  # a mesh: particles per element (scene/mesh.py)
+        return geom.seed()
     lo, hi = geom.bbox()
     dim = len(lo)
     if body.count is not None:
