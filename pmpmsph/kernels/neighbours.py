@@ -102,3 +102,17 @@ def neighbour_lists(x, n_query, radius):
     _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, radius * radius, start, index,
           False)
     return start, index
+
+
+@njit
+def moved_beyond(x, x_ref, distance):
+    """True if any row of x lies farther than `distance` from the same row of x_ref."""
+    d2 = distance * distance
+    for i in range(x.shape[0]):
+        s = 0.0
+        for a in range(x.shape[1]):
+            d = x[i, a] - x_ref[i, a]
+            s += d * d
+        if s > d2:
+            return True
+    return False

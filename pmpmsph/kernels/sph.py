@@ -366,20 +366,34 @@ def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
 
 
 @njit
-def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho, L):
+def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho, L,
+            save, with_F):
     """y <- c0 y0 + c1 y + dtc f(y) for y = (x, v, rho, F), f = (v, acc, drho, L F), on
     owned SPH rows (walls stay put). One formula covers Euler, predictor-corrector and
-    TVD-RK3 stages. Positions move with the velocity at the start of the stage."""
+    TVD-RK3 stages. Positions move with the velocity at the start of the stage. With `save`
+    the current y is first copied to y0 (the step start) in the same pass; without `with_F`
+    F is left alone (fluids: F follows from the density)."""
     dim = len(dim_tag)
     LF = np.zeros((3, 3))
     for a in range(n):
         if method[a] != SPH:
             continue
+        if save:
+            for d in range(dim):
+                x0[a, d] = x[a, d]
+                v0[a, d] = v[a, d]
+            r0[a] = rho[a]
+            if with_F:
+                for i in range(3):
+                    for j in range(3):
+                        F0[a, i, j] = F[a, i, j]
         for d in range(dim):
             xn = c0 * x0[a, d] + c1 * x[a, d] + dtc * v[a, d]
             v[a, d] = c0 * v0[a, d] + c1 * v[a, d] + dtc * acc[a, d]
             x[a, d] = xn
         rho[a] = c0 * r0[a] + c1 * rho[a] + dtc * drho[a]
+        if not with_F:
+            continue
         for i in range(dim):
             for j in range(dim):
                 s = 0.0

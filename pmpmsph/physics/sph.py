@@ -17,7 +17,7 @@ and the halo is refreshed at every evaluation.
 """
 import numpy as np
 
-from ..kernels.neighbours import neighbour_lists
+from ..kernels.neighbours import moved_beyond, neighbour_lists
 from ..kernels.sph import (advance, artificial_stress, cayley_update, drift, first_outside,
                            kick, pair_stress, sound_speeds, sph_rates, sph_stress,
                            sync_ghost_velocity, wall_state)
@@ -138,8 +138,7 @@ class SPHStage:
         p = self.p
         need = self.x_build is None or len(self.x_build) != p.n_owned
         if not need and p.n_owned:
-            d = p["x"] - self.x_build
-            need = float(np.max(np.einsum("ij,ij->i", d, d))) > 0.25 * self.skin ** 2
+            need = moved_beyond(p["x"], self.x_build, 0.5 * self.skin)
         if self.halo_enabled and self.dist.size > 1:
             need = self.dist.any(need)
         return need
@@ -228,7 +227,7 @@ class SPHStage:
             self.stress(0.0, self._mstate(0).copy())
             n = 0
             if "x_n" in p:
-                self._advance(0.0, 1.0, 0.0)
+                self._advance(0.0, 1.0, 0.0, save=True)
             kick(self.dim_tag, n, p["method"], 0.0, p["v"], p["acc"])
             drift(self.dim_tag, n, p["method"], 0.0, p["x"], p["v"])
             cayley_update(self.dim_tag, n, p["method"], 0.0, p["rho"], p["F"], p["drho"],
@@ -241,17 +240,14 @@ class SPHStage:
             self.x_build = None
 
     # -- integrators ---------------------------------------------------------------------------
-    def _save(self):
-        p = self.p
-        for src, dst in (("x", "x_n"), ("v", "v_n"), ("rho", "rho_n"), ("F", "F_n")):
-            p[dst][...] = p[src]
-
-    def _advance(self, c0, c1, dtc):
+    def _advance(self, c0, c1, dtc, save=False):
+        """One stage y <- c0 y_n + c1 y + dtc f (with `save`: y_n <- y first)."""
         p = self.p
         n = p.n_owned
         with self.timers.phase("integrate"):
-            advance(self.dim_tag, n, p["method"], c0, p["x_n"], p["v_n"], p["rho_n"], p["F_n"], c1,
-                    dtc, p["x"], p["v"], p["rho"], p["F"], p["acc"], p["drho"], p["L"])
+            advance(self.dim_tag, n, p["method"], c0, p["x_n"], p["v_n"], p["rho_n"],
+                    p["F_n"], c1, dtc, p["x"], p["v"], p["rho"], p["F"], p["acc"],
+                    p["drho"], p["L"], save, self.want_L)
 
     def step(self, dt, time):
         """Advance owned SPH particles by dt; returns a failed row or -1."""
@@ -275,18 +271,16 @@ class SPHStage:
             with self.timers.phase("integrate"):
                 kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
         elif self.integrator == "predictor_corrector":
-            self._save()
-            self._advance(0.0, 1.0, 0.5 * dt)     # predictor with the last rates
+            self._advance(0.0, 1.0, 0.5 * dt, save=True)  # predictor with the last rates
             self.stress(0.5 * dt, m0)
             self.evaluate()
             self._advance(1.0, 0.0, dt)           # corrector from the step start
             bad = self.stress(dt, m0)
         else:  # TVD-RK3 (Shu & Osher)
-            self._save()
             for c0, c1, frac in ((0.0, 1.0, 1.0), (0.75, 0.25, 0.5), (1.0 / 3.0, 2.0 / 3.0, 1.0)):
                 if c0 > 0.0:
                     self.evaluate()
-                self._advance(c0, c1, c1 * dt)
+                self._advance(c0, c1, c1 * dt, save=c0 == 0.0)
                 bad = self.stress(frac * dt, m0)
                 if bad >= 0:
                     break

@@ -58,6 +58,7 @@ class TLSPHStage(SPHStage):
         self.rate = spec.deformation == "rate"
         self.current_force = spec.force == "current"
         self.ref = None  # (start0, index0, gw0) of the reference configuration
+        self.want_L = True  # F is integrated (eq. 9) or recomputed: advance it in any case
 
     def set_decomposition(self, decomposition):
         from ..parallel.particle_halo import ParticleHalo
@@ -187,7 +188,7 @@ class TLSPHStage(SPHStage):
         try:
             self.evaluate(0.0)
             if "x_n" in p:
-                self._advance(0.0, 1.0, 0.0)
+                self._advance(0.0, 1.0, 0.0, save=True)
             kick(self.dim_tag, 0, p["method"], 0.0, p["v"], p["acc"])
             drift(self.dim_tag, 0, p["method"], 0.0, p["x"], p["v"])
             first_outside(self.dim, 0, p["x"], self.lo, self.hi)
@@ -215,14 +216,12 @@ class TLSPHStage(SPHStage):
             with self.timers.phase("integrate"):
                 kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
         elif self.integrator == "predictor_corrector":
-            self._save()
-            self._advance(0.0, 1.0, 0.5 * dt)
+            self._advance(0.0, 1.0, 0.5 * dt, save=True)
             self.evaluate(0.5 * dt)
             self._advance(1.0, 0.0, dt)
             self.evaluate(dt)
         else:  # TVD-RK3
-            self._save()
-            self._advance(0.0, 1.0, dt)
+            self._advance(0.0, 1.0, dt, save=True)
             self.evaluate(dt)
             self._advance(0.75, 0.25, 0.25 * dt)
             self.evaluate(0.5 * dt)
