@@ -3,10 +3,20 @@ import numpy as np
 
 from .errors import ConfigError
 from .particles import FieldSpec, ParticleSet
-from .physics.loads import PrescribedVelocity, TractionLoads
+from .physics.loads import PrescribedVelocity, TractionLoads, _in_region
 from .physics.mpm import MPMStage
 from .physics.sph import SPHStage
 from .physics.tlsph import TLSPHStage
+
+
+def region_methods(case, x, method):
+    """Method codes of positions x under the case's method regions (applied in order over
+    `method`, the codes the particles have now; wall particles are left alone)."""
+    out = np.array(method, dtype=np.int8, copy=True)
+    for reg in case.regions:
+        inside = reg.geometry.contains(x) & (out != METHOD_CODES["wall"])
+        out[inside] = METHOD_CODES[reg.method]
+    return out
 
 
 def sph_stage_class(case):
@@ -16,6 +26,46 @@ from .scene.seeding import seed_body
 
 #: `method` field codes (kernels.sph uses the same numbers)
 METHOD_CODES = {"mpm": 0, "sph": 1, "wall": 2}
+#: most lattice points a scene may seed: every rank seeds every body before keeping its own
+#: particles, so this bounds the memory of one rank at set-up (about 1 kB per point)
+MAX_SEEDED = 1e8
+
+
+def lattice_points(body, grid):
+    """How many lattice points `seed_body` lays over the body's bounding box (before it keeps
+    those inside the geometry), from the geometry and ppc/spacing/count alone, in floating
+    point: a scene can be rejected before anything is allocated. Mesh bodies: their particles.
+    Returns (count, the TOML key of the seeding parameter)."""
+    geom = body.geometry
+    if hasattr(geom, "seed"):  # a mesh body, already read: one point per particle
+        return float(len(geom.x)), "file"
+    lo, hi = geom.bbox()
+    if body.count is not None:
+        return float(np.prod(np.array(body.count, float))), "count"
+    if body.spacing is not None:
+        per_axis = np.maximum(np.floor((hi - lo) / np.array(body.spacing, float) + 1e-9), 1.0)
+        return float(np.prod(per_axis)), "spacing"
+    h = np.array(grid.cell_size, float)
+    org = np.array(grid.origin, float)
+    cells = np.ceil((hi - org) / h) - np.floor((lo - org) / h)
+    return float(np.prod(np.maximum(cells, 0.0) * body.ppc)), "ppc"
+
+
+def _overlapped(x, earlier):
+    """The first earlier body whose (closed) region holds some of the particles `x`:
+    (index, how many) or None. Two bodies whose particles share space put material there
+    twice (in MPM both load the same grid nodes), which is almost always a mistake in the
+    case: bodies may touch but not overlap. Mesh bodies are checked only as the later body
+    (a mesh has no point-in-body test)."""
+    xlo, xhi = x.min(axis=0), x.max(axis=0)
+    for bj, (geom, glo, ghi) in enumerate(earlier):
+        if geom is None or np.any(xhi < glo) or np.any(xlo > ghi):
+            continue
+        near = np.all((x >= glo) & (x <= ghi), axis=1)
+        inside = int(np.count_nonzero(geom.contains(x[near])))
+        if inside:
+            return bj, inside
+    return None
 
 
 def material_arrays(case):
@@ -70,6 +120,19 @@ def build_particles(case, keep=None):
     lo = np.array(case.domain[0]) if case.domain else None
     hi = np.array(case.domain[1]) if case.domain else None
     where = "grid" if case.grid else "domain"
+    seeded = 0.0
+    for bi, body in enumerate(case.bodies):
+        key = f"bodies[{bi}]"
+        points, param = lattice_points(body, case.grid)
+        seeded += points
+        if seeded > MAX_SEEDED:
+            so_far = f" ({seeded:.3g} in the scene so far)" if seeded > points else ""
+            raise ConfigError(f"{key}.{param}", f"body {body.name!r} would seed about "
+                              f"{points:.3g} particles{so_far}, more than this solver seeds "
+                              f"({MAX_SEEDED:.0e}): check the body's size against its {param}")
+    earlier = []
+    acting = case.loads + case.prescribed
+    selected = [0] * len(acting)  # particles each load / prescribed velocity acts on
     for bi, body in enumerate(case.bodies):
         x, vol, spacing = seed_body(body, case.grid)
         key = f"bodies[{bi}]"
@@ -79,6 +142,18 @@ def build_particles(case, keep=None):
         if lo is not None and (np.any(x < lo) or np.any(x > hi)):
             raise ConfigError(key, f"body {body.name!r} has particles outside the {where} "
                               f"[{lo.tolist()}, {hi.tolist()}]")
+        hit = _overlapped(x, earlier)
+        if hit is not None:
+            bj, inside = hit
+            raise ConfigError(key, f"body {body.name!r} overlaps body "
+                              f"{case.bodies[bj].name!r} (bodies[{bj}]): {inside} of its "
+                              f"{len(x)} particles lie inside it; bodies may touch but not "
+                              "overlap (each would put its own material in the same space)")
+        for j, spec in enumerate(acting):
+            if spec.body == body.name:
+                selected[j] += int(np.count_nonzero(_in_region(x, spec.region)))
+        geom = body.geometry
+        earlier.append((geom, *geom.bbox()) if hasattr(geom, "contains") else (None, None, None))
         mi = mat_names.index(body.material)
         mat = mats[mi]
         n = len(x)
@@ -89,10 +164,11 @@ def build_particles(case, keep=None):
             "gid": gid, "body": np.full(n, bi, np.int32), "mat": np.full(n, mi, np.int32),
             "x": x, "v": np.tile(np.array(body.velocity, float), (n, 1)),
             "mass": mat.rho0 * vol, "vol0": vol, "vol": vol,
-            "method": np.full(n, METHOD_CODES["wall" if body.wall else body.method], np.int8),
+            "method": region_methods(case, x, np.full(
+                n, METHOD_CODES["wall" if body.wall else body.method], np.int8)),
         }
         if "rho" in ps:
-            vals["rho"] = np.full(n, mat.rho0)
+            vals["rho"] = mat.rho0 * np.ones(n)
         if "X0" in ps:
             vals["X0"] = x
         if body.wall:
@@ -116,4 +192,12 @@ def build_particles(case, keep=None):
         if case.prescribed:
             vals["vpres_id"] = PrescribedVelocity.seed(case.prescribed, x, body.name)
         ps.append({k: np.asarray(v)[sel] for k, v in vals.items()})
+    for spec, count in zip(acting, selected):
+        if not count:
+            raise ConfigError(f"{spec.key}.box", f"holds no particle of body {spec.body!r}, "
+                              "so this would act on nothing")
+    for i, name in enumerate(case.output.fields):
+        if name != "rho" and name not in ps:  # rho is derived (mass/vol) if not a field
+            raise ConfigError(f"output.fields[{i}]", f"no particle field {name!r} in this "
+                              f"scene; fields: {', '.join(sorted(set(ps.arrays) | {'rho'}))}")
     return ps

@@ -61,6 +61,11 @@ class Simulation:
         self.sph = (sph_stage_class(case)(case, self.particles, self.materials,
                                           self.decomposition, self.dist, self.timers)
                     if case.has_sph else None)
+        self.coupling = None
+        if case.coupled:
+            from .physics.coupling import Coupling
+
+            self.coupling = Coupling(case, self.particles, self.mpm, self.sph)
         self.migrated = 0
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
@@ -131,6 +136,10 @@ class Simulation:
                 cell_keys(p["x"], g.origin, g.inv_dx, g.strides)
             if self.sph is not None:
                 self.sph.warm_up()
+            if self.coupling is not None:
+                with self.mpm.detached():
+                    self.coupling.prepare()
+                self.mpm.n_p2g = self.mpm.n_g2p = None
             mtypes, mparams = self.materials
             mstate = p["mstate"] if "mstate" in p else np.zeros((0, 0))
             particle_sums(self.dim, p["x"], p["v"], p["mass"], p["vol0"], p["F"], p["mat"],
@@ -264,8 +273,13 @@ class Simulation:
         if self.loads is not None:
             self.loads.update(self.time)
         bad = -1
+        if self.coupling is not None:
+            with self.timers.phase("coupling"):
+                self.coupling.prepare()
         if self.mpm is not None:
             bad = self.mpm.step(self.dt, self.time)
+        if self.coupling is not None:
+            self.coupling.after_mpm()
         if self.sph is not None:
             bad_sph = self.sph.step(self.dt, self.time)
             bad = bad if bad >= 0 else bad_sph
@@ -282,7 +296,8 @@ class Simulation:
                 self.migrated += sent
             if self.sph is not None and (sent or received):
                 self.sph.invalidate()
-        if (self.mpm is not None and self.step_count % SORT_EVERY == 0
+        if (self.mpm is not None and self.coupling is None  # coupling keeps its own order
+                and self.step_count % SORT_EVERY == 0
                 and self.particles.n_owned >= SORT_MIN_PARTICLES):
             with self.timers.phase("sort"):
                 self.mpm.sort_by_cell()

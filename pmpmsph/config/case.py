@@ -122,6 +122,20 @@ class PrescribedSpec:
 
 
 @dataclass(frozen=True)
+class MethodRegion:
+    """Particles of non-wall bodies inside `geometry` are seeded (and, with handover,
+    relabelled) as `method` (seed 000 §4: MPM and SPH regions)."""
+    method: str
+    geometry: object
+    key: str = ""
+
+
+@dataclass(frozen=True)
+class CouplingSpec:
+    handover: bool = False      # relabel particles that cross a region boundary
+
+
+@dataclass(frozen=True)
 class TimeSpec:
     end: float
     dt: Optional[float] = None
@@ -162,15 +176,24 @@ class Case:
     parallel: ParallelSpec = field(default_factory=ParallelSpec)
     sph: Optional[SPHSpec] = None
     domain: Optional[tuple] = None  # (min, max) box particles must stay in (grid box if any)
+    regions: tuple = ()             # MethodRegion, applied in order over the body methods
+    coupling: CouplingSpec = field(default_factory=CouplingSpec)
     text: str = ""
+
+    def _methods(self):
+        return {b.method for b in self.bodies} | {r.method for r in self.regions}
 
     @property
     def has_mpm(self):
-        return any(b.method == "mpm" for b in self.bodies)
+        return "mpm" in self._methods()
 
     @property
     def has_sph(self):
-        return any(b.method == "sph" for b in self.bodies)
+        return "sph" in self._methods()
+
+    @property
+    def coupled(self):
+        return self.has_mpm and self.has_sph
 
     def material_names(self):
         return list(self.materials)

@@ -13,10 +13,10 @@ from ..materials import material_from_table
 from ..scene.geometry import Box, Disc, Polygon
 from ..scene.mesh import MeshGeometry, mesh_geometry
 from .case import (BC_KINDS, CONTACTS, METHODS, SHAPES, SPH_FORMULATIONS, SPH_INTEGRATORS,
-                   SPH_KERNELS, TRANSFERS, BodySpec, BoundarySpec, Case, GridSpec, LoadSpec,
-                   MPMSpec, OutputSpec, ParallelSpec, PrescribedSpec, Region, SPHSpec,
-                   TimeSpec)
-from .table import Table
+                   SPH_KERNELS, TRANSFERS, BodySpec, BoundarySpec, Case, CouplingSpec,
+                   GridSpec, LoadSpec, MethodRegion, MPMSpec, OutputSpec, ParallelSpec,
+                   PrescribedSpec, Region, SPHSpec, TimeSpec)
+from .table import Table, is_finite
 
 FACES = ("x-", "x+", "y-", "y+", "z-", "z+")
 #: folder that relative paths in a case (mesh files) are taken from: the case file's folder
@@ -76,10 +76,13 @@ def load_case_file(path, overrides=()):
     import os
 
     try:
-        with open(path, encoding="utf-8") as fh:
+        with open(path, encoding="utf-8-sig") as fh:  # -sig: a byte-order mark is fine
             text = fh.read()
     except OSError as exc:
         raise ConfigError("<file>", f"cannot read {path}: {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise ConfigError("<file>", f"{path} is not UTF-8 text (byte {exc.start}): a case "
+                          "file is TOML text") from None
     name = os.path.splitext(os.path.basename(path))[0]
     return load_case_text(text, name=name, overrides=overrides,
                           base_dir=os.path.dirname(os.path.abspath(path)))
@@ -141,7 +144,7 @@ def _geometry(t, dim):
     for i, v in enumerate(verts):
         if (not isinstance(v, list) or len(v) != 2
                 or not all(isinstance(c, (int, float)) and not isinstance(c, bool)
-                           and math.isfinite(c) for c in v)):
+                           and is_finite(c) for c in v)):
             raise ConfigError(f"{t.key('vertices')}[{i}]", "expected [x, y] with finite numbers")
         pts.append(tuple(float(c) for c in v))
     poly = Polygon(tuple(pts))
@@ -184,24 +187,29 @@ def _body(t, dim, materials, grid):
     if wall and method != "sph":
         raise ConfigError(t.key("wall"), "wall particles are SPH dummy particles: set "
                           "method = \"sph\" (MPM walls are grid boundaries)")
-    if method == "sph" and ppc is not None:
-        raise ConfigError(t.key("ppc"), "SPH bodies are seeded by spacing or count, not ppc")
+    if method == "sph" and ppc is not None and grid is None:
+        raise ConfigError(t.key("ppc"), "SPH bodies without a [grid] are seeded by spacing "
+                          "or count, not ppc")
     t.finish()
     return BodySpec(name, method, mat, geom, ppc, spacing, count, velocity, stress, wall)
 
 
-def _body_spacing(body):
-    """Smallest lattice spacing of an SPH body (spacing or count given)."""
+def _body_spacing(body, grid=None):
+    """Smallest lattice spacing of a body (spacing, count, or ppc with a grid)."""
     if body.spacing is not None:
         return min(body.spacing)
+    if body.ppc is not None:
+        return min(grid.cell_size) / body.ppc
     g = body.geometry
     return min((hi - lo) / c for lo, hi, c in zip(g.lo, g.hi, body.count))
 
 
-def _sph(t, dim, bodies, materials):
-    """The [sph] section; h defaults to h_factor x the particle spacing (seed 004 §2)."""
-    solids = [b for b in bodies if b.method == "sph" and not b.wall]
-    spacing = min((_body_spacing(b) for b in solids), default=0.0)
+def _sph(t, dim, bodies, materials, grid=None, coupled=False):
+    """The [sph] section; h defaults to h_factor x the particle spacing (seed 004 §2), and
+    to the cell size in a coupled scene (seed 000 §4: the SPH smoothing length equals the
+    cell width, so both methods resolve the same scale)."""
+    solids = [b for b in bodies if (b.method == "sph" or coupled) and not b.wall]
+    spacing = min((_body_spacing(b, grid) for b in solids), default=0.0)
     if spacing == 0.0:
         raise ConfigError("bodies", "SPH scenes need at least one SPH body that is not a wall")
     kernel = t.string("kernel", "cubic", choices=SPH_KERNELS)
@@ -209,7 +217,11 @@ def _sph(t, dim, bodies, materials):
         raise ConfigError(t.key("h_factor"), "give either sph.h or sph.h_factor, not both")
     h = t.number("h", None, min_open=0.0)
     if h is None:
-        h = t.number("h_factor", 1.3, min_open=0.0, max=4.0) * spacing
+        h = t.number("h_factor", 1.3, min_open=0.5, max=4.0) * spacing
+    elif not 0.5 * spacing < h <= 4.0 * spacing:  # as h_factor: no neighbour / too many
+        raise ConfigError(t.key("h"), f"{h:g} is not in (0.5, 4] x the particle spacing "
+                          f"{spacing:g} (below, the kernel support 2h holds no neighbour; "
+                          "above, every particle has hundreds)")
     integrator = t.string("integrator", "predictor_corrector",
                           choices=SPH_INTEGRATORS + ("leapfrog",))
     integrator = "verlet" if integrator == "leapfrog" else integrator
@@ -235,6 +247,13 @@ def _sph(t, dim, bodies, materials):
         wall_no_slip=walls == "no_slip")
     t.finish()
     return spec
+
+
+def _method_region(t, dim):
+    method = t.string("method", choices=METHODS)
+    geom = _geometry(t, dim)
+    t.finish()
+    return MethodRegion(method, geom, t.path)
 
 
 def _domain(t, dim):
@@ -274,10 +293,18 @@ def _boundary(t, dim):
     return BoundarySpec(region, kind, normal, mu, until, t.path)
 
 
+def _no_face(t):
+    """Loads and prescribed velocities select particles in a box; a grid face holds none."""
+    if t.has("face"):
+        raise ConfigError(t.key("face"), "this acts on the particles of a body inside a box: "
+                          "give box = { min = [...], max = [...] } (faces are for [[boundaries]])")
+
+
 def _load(t, dim, body_names):
     body = t.string("body")
     if body not in body_names:
         raise ConfigError(t.key("body"), f"unknown body {body!r}")
+    _no_face(t)
     region = _region(t, dim)
     if t.has("stress") == t.has("traction"):
         raise ConfigError(t.key("traction"), "give either traction or stress (with normal)")
@@ -306,6 +333,7 @@ def _prescribed(t, dim, body_names):
     body = t.string("body")
     if body not in body_names:
         raise ConfigError(t.key("body"), f"unknown body {body!r}")
+    _no_face(t)
     region = _region(t, dim, required=False) or Region(lo=(-math.inf,) * dim,
                                                        hi=(math.inf,) * dim)
     raw = t.raw("velocity")
@@ -315,7 +343,7 @@ def _prescribed(t, dim, body_names):
     for i, c in enumerate(raw):
         if c == "free":
             vel.append(None)
-        elif isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c):
+        elif isinstance(c, (int, float)) and not isinstance(c, bool) and is_finite(c):
             vel.append(float(c))
         else:
             raise ConfigError(f"{t.key('velocity')}[{i}]", "expected a number or \"free\"")
@@ -325,11 +353,35 @@ def _prescribed(t, dim, body_names):
     return PrescribedSpec(body, region, tuple(vel), start, until, t.path)
 
 
+def _case_name(name):
+    """The case name names the default output folder output/<name>: one plain path part."""
+    if not name.strip() or name in (".", "..") or any(c in name for c in "/\\\0"):
+        raise ConfigError("name", f"{name!r} is not a plain name (it names the output "
+                          "folder output/<name>): no path separators, not empty, '.' or '..'")
+    return name
+
+
+def _folder(t, key, default):
+    """A folder the case writes to: relative and inside the current directory tree. (The
+    command line's --out is the user's explicit choice; a case file must not write
+    elsewhere.)"""
+    import os
+
+    path = t.string(key, default)
+    norm = os.path.normpath(path) if path else ""
+    if (not path or os.path.isabs(path) or os.path.splitdrive(path)[0] or "\0" in path
+            or norm == ".." or norm.startswith(".." + os.sep)):
+        raise ConfigError(t.key(key), f"{path!r} is not a folder inside the current "
+                          "directory: give a relative path without '..' that leaves it "
+                          "(use --out for anywhere else)")
+    return path
+
+
 def case_from_dict(data, name="case", text=""):
     data = copy.deepcopy(data)
     root = Table(data, "")
     dim = root.number("dimension", integer=True, min=1, max=3)
-    name = root.string("name", name)
+    name = _case_name(root.string("name", name))
     grid_t = root.sub("grid", None)
     grid = _grid(grid_t, dim) if grid_t is not None else None
 
@@ -361,12 +413,22 @@ def case_from_dict(data, name="case", text=""):
             raise ConfigError(f"bodies[{i}].name", f"duplicate body name {n!r}")
     if any(b.method == "mpm" for b in bodies) and grid is None:
         raise ConfigError("grid", "MPM bodies need a [grid] section")
-    has_sph = any(b.method == "sph" for b in bodies)
+    regions = tuple(_method_region(rt, dim) for rt in root.subs("regions"))
+    coup_t = root.sub("coupling", {})
+    coupling = CouplingSpec(handover=coup_t.boolean("handover", False))
+    coup_t.finish()
+    if coupling.handover and not regions:
+        raise ConfigError("coupling.handover", "handover needs [[regions]] to hand over at")
+    methods = {b.method for b in bodies} | {r.method for r in regions}
+    has_sph = "sph" in methods
+    coupled = has_sph and "mpm" in methods
+    if coupled and grid is None:
+        raise ConfigError("grid", "a coupled MPM-SPH scene needs a [grid]")
     sph_t = root.sub("sph", None)
     if sph_t is not None and not has_sph:
         raise ConfigError("sph", "an [sph] section but no body with method = \"sph\"")
     sph = _sph(sph_t if sph_t is not None else Table({}, "sph"), dim, bodies,
-               materials) if has_sph else None
+               materials, grid, coupled) if has_sph else None
     dom_t = root.sub("domain", None)
     if dom_t is not None:
         domain = _domain(dom_t, dim)
@@ -381,6 +443,14 @@ def case_from_dict(data, name="case", text=""):
         pass  # lp = 1/2 is the largest GIMP support this stencil covers; ppc >= 1 is fine
 
     boundaries = tuple(_boundary(bt, dim) for bt in root.subs("boundaries"))
+    for b in boundaries:
+        if grid is None:
+            raise ConfigError(b.key, "boundaries act on the MPM grid and this scene has no "
+                              "[grid] (SPH walls are bodies with wall = true)")
+        if b.region.lo is not None and any(
+                b.region.hi[a] < grid.origin[a] or b.region.lo[a] > grid.upper[a]
+                for a in range(dim)):
+            raise ConfigError(f"{b.key}.box", "lies outside the grid: it holds no grid node")
     loads = tuple(_load(lt, dim, names) for lt in root.subs("loads"))
     if len({ld.ramp for ld in loads}) > 1:
         raise ConfigError("loads[1].ramp", "all loads share one ramp time in this version")
@@ -405,7 +475,7 @@ def case_from_dict(data, name="case", text=""):
         raise ConfigError(ot.key("fields"), "expected a list of field names")
     output = OutputSpec(every=every, every_steps=every_steps,
                         diagnostics_every=ot.number("diagnostics_every", 1, integer=True, min=1),
-                        fields=tuple(fields), folder=ot.string("folder", "output"),
+                        fields=tuple(fields), folder=_folder(ot, "folder", "output"),
                         checkpoint_every=ot.number("checkpoint_every", 0, integer=True, min=0))
     ot.finish()
     pt = root.sub("parallel", {})
@@ -418,4 +488,4 @@ def case_from_dict(data, name="case", text=""):
     return Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
                 boundaries=boundaries, loads=loads, prescribed=prescribed, gravity=gravity,
                 time=TimeSpec(end, dt, cfl), output=output, parallel=parallel, sph=sph,
-                domain=domain, text=text)
+                domain=domain, regions=regions, coupling=coupling, text=text)

@@ -46,8 +46,28 @@ class MPMStage:
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
         self.mtypes, self.mparams = materials
-        used = {list(case.materials).index(b.material) for b in case.bodies if b.method == "mpm"}
+        used = {list(case.materials).index(b.material) for b in case.bodies
+                if b.method == "mpm" or case.regions}
         self.mat_tag = material_tag(self.mtypes[sorted(used)])
+        # rows [0, n_p2g) take part in P2G and [0, n_g2p) are updated by G2P; None: all
+        # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone)
+        self.n_p2g = self.n_g2p = None
+
+    @property
+    def n_p2g(self):
+        return self.p.n_owned if self._n_p2g is None else self._n_p2g
+
+    @n_p2g.setter
+    def n_p2g(self, value):
+        self._n_p2g = value
+
+    @property
+    def n_g2p(self):
+        return self.p.n_owned if self._n_g2p is None else self._n_g2p
+
+    @n_g2p.setter
+    def n_g2p(self, value):
+        self._n_g2p = value
 
     def set_decomposition(self, decomposition):
         """(Re)build the local grid, its boundary conditions and ghost-node plan for a slab."""
@@ -90,10 +110,11 @@ class MPMStage:
         return out
 
     # -- the loops ------------------------------------------------------------------------------
-    def _optional(self):
-        """The optional per-particle inputs of the kernels: an array, or None if absent."""
+    def _optional(self, n=None):
+        """The optional per-particle inputs of the kernels over the rows [0, n): an array,
+        or None if absent."""
         p = self.p
-        n = p.n_owned
+        n = p.n_owned if n is None else n
         lp = p["lp"][:n] if "lp" in p else None
         fext = p["fext"][:n] if "fext" in p else None
         pfield = p["body"][:n] if self.multi else None
@@ -103,7 +124,7 @@ class MPMStage:
 
     def _p2g(self, with_force):
         g, p = self.grid, self.p
-        n, lp, fext, pfield, _, _ = self._optional()
+        n, lp, fext, pfield, _, _ = self._optional(self.n_p2g)
         t = self.timers
         with t.phase("p2g"):
             g.reset()
@@ -133,7 +154,7 @@ class MPMStage:
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p
-        n, lp, _, pfield, pre, mstate = self._optional()
+        n, lp, _, pfield, pre, mstate = self._optional(self.n_g2p)
         with self.timers.phase("g2p"):
             return g2p(*self.tags, self.mat_tag, p["x"][:n], p["v"][:n],
                        p["F"][:n] if deformation else None, p["sigma"][:n], p["vol"][:n],

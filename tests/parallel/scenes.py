@@ -110,3 +110,39 @@ def shear_velocity(sim, rate=0.8):
     p = sim.particles
     p["v"][:, 0] = rate * p["x"][:, 1]
     p["v"][:, 1] = 0.0
+
+
+def coupled_bar_1d(mode="coupled", shape="gimp", integrator="verlet"):
+    """Seed 000 §5 copper bar (cell 0.1, spacing 0.05) as `mode`: "coupled" (MPM in the
+    outer cells [0, 0.2] and [0.8, 1], SPH inside, h = cell size), "mpm" or "sph"."""
+    sc = Scene(1, grid=dict(origin=[-0.3], cell_size=0.1, cells=[16]),
+               time=dict(end=1.0, cfl=0.1),
+               mpm=dict(shape=shape, transfer="usl"),
+               parallel=dict(balance_every=0))
+    if mode != "mpm":
+        sc.data["sph"] = dict(h=0.1, integrator=integrator,
+                              viscosity=dict(alpha=0.0, beta=0.0))
+    sc.material("copper", model="linear_elastic", E=128e9, nu=0.3, rho=8790.0)
+    sc.body(name="bar", method="sph" if mode == "sph" else "mpm", material="copper",
+            shape="box", min=[0.0], max=[1.0], spacing=0.05)
+    if mode == "coupled":
+        sc.data["regions"] = [dict(method="sph", shape="box", min=[0.2], max=[0.8])]
+    return sc
+
+
+def coupled_stress_bar(h=0.1, transfer="musl", alpha=0.0):
+    """Seed 000 §5.2 (BENCHMARKS.md scene 9): the copper bar compressed by 1 MPa ramped over
+    2 ms on its end particles (MPM, [0, 0.2] and [0.8, 1]), SPH inside, damped to rest."""
+    sc = Scene(1, grid=dict(origin=[-0.2], length=[1.4], cells=[14]),
+               time=dict(end=0.02, cfl=0.1),
+               mpm=dict(shape="gimp", damping=2000.0, transfer=transfer),
+               sph=dict(h=h, integrator="verlet", damping=2000.0,
+                        viscosity=dict(alpha=alpha, beta=alpha)),
+               parallel=dict(balance_every=0))
+    sc.material("copper", model="linear_elastic", E=128e9, nu=0.3, rho=8790.0)
+    sc.body(name="bar", material="copper", shape="box", min=[0.0], max=[1.0], spacing=0.05)
+    sc.data["regions"] = [dict(method="sph", shape="box", min=[0.2], max=[0.8])]
+    for lo, hi, face in ((0.0, 0.05, "x-"), (0.95, 1.0, "x+")):
+        sc.load(body="bar", box=dict(min=[lo], max=[hi]), normal=face, stress=[-1e6],
+                ramp=0.002)
+    return sc

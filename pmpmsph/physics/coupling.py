@@ -1,0 +1,170 @@
+"""MPM-SPH coupling after Raymond, Jones & Williams (seed 000, §4).
+
+Both methods share one particle state, so coupling is a matter of which particles take part
+in which sums:
+  * the MPM region is the set of grid cells that hold MPM particles (it moves with them);
+    SPH particles within one cell of it (the transition zone) take part in P2G with their
+    mass, momentum and stress, but are updated by SPH;
+  * MPM particles within the support of SPH particles are SPH neighbours (they carry
+    rho = m/V, sigma, v like any SPH particle), but are updated by MPM;
+  * each particle is updated by the scheme of its own method.
+Rows are kept ordered MPM | transition SPH | other SPH (walls) so that P2G runs over one
+prefix of the owned rows and G2P over a shorter one; the order is restored only when
+membership changed or migration moved rows. With `handover`, a particle that crosses a
+method-region boundary is relabelled (a change of `method`, nothing else: the state is
+shared).
+"""
+import numpy as np
+
+from ..jit import njit
+
+MPM = 0
+SPH = 1
+
+
+@njit
+def mark_mpm_cells(dim_tag, n, x, method, origin, inv_dx, strides, shape, mark):
+    """mark[node] = 1 for the corner nodes of every cell holding an MPM row of [0, n)."""
+    dim = len(dim_tag)
+    for p in range(n):
+        if method[p] != MPM:
+            continue
+        c0 = min(max(int(np.floor((x[p, 0] - origin[0]) * inv_dx)), 0), shape[0] - 2)
+        c1 = 0
+        c2 = 0
+        if dim > 1:
+            c1 = min(max(int(np.floor((x[p, 1] - origin[1]) * inv_dx)), 0), shape[1] - 2)
+        if dim > 2:
+            c2 = min(max(int(np.floor((x[p, 2] - origin[2]) * inv_dx)), 0), shape[2] - 2)
+        for k in range(2 if dim > 2 else 1):
+            for j in range(2 if dim > 1 else 1):
+                for i in range(2):
+                    idx = (c0 + i) * strides[0]
+                    if dim > 1:
+                        idx += (c1 + j) * strides[1]
+                    if dim > 2:
+                        idx += (c2 + k) * strides[2]
+                    mark[idx] = 1.0
+
+
+@njit
+def transition_keys(dim_tag, n, x, method, origin, inv_dx, strides, shape, mark, key):
+    """key = 0 for MPM rows, 1 for SPH rows within one cell of a marked cell (a marked node
+    among the nodes of the 3^dim cells around its own), 2 for the other rows."""
+    dim = len(dim_tag)
+    c = np.zeros(3, np.int64)
+    for p in range(n):
+        if method[p] == MPM:
+            key[p] = 0
+            continue
+        key[p] = 2
+        if method[p] != SPH:
+            continue
+        for a in range(dim):
+            c[a] = int(np.floor((x[p, a] - origin[a]) * inv_dx))
+        found = False
+        for k in range(-1, 3) if dim > 2 else range(0, 1):
+            for j in range(-1, 3) if dim > 1 else range(0, 1):
+                for i in range(-1, 3):
+                    i0 = c[0] + i
+                    i1 = c[1] + j if dim > 1 else 0
+                    i2 = c[2] + k if dim > 2 else 0
+                    if i0 < 0 or i0 >= shape[0]:
+                        continue
+                    if dim > 1 and (i1 < 0 or i1 >= shape[1]):
+                        continue
+                    if dim > 2 and (i2 < 0 or i2 >= shape[2]):
+                        continue
+                    idx = i0 * strides[0]
+                    if dim > 1:
+                        idx += i1 * strides[1]
+                    if dim > 2:
+                        idx += i2 * strides[2]
+                    if mark[idx] > 0.0:
+                        found = True
+        if found:
+            key[p] = 1
+
+
+@njit
+def is_sorted(key, n):
+    for p in range(1, n):
+        if key[p] < key[p - 1]:
+            return False
+    return True
+
+
+class Coupling:
+    """Keeps the owned rows ordered for the coupled step and hands particles over."""
+
+    def __init__(self, case, particles, mpm, sph, regions=None):
+        self.case = case
+        self.p = particles
+        self.mpm = mpm
+        self.sph = sph
+        self.dim_tag = (0,) * case.dim
+        self.handover = case.coupling.handover
+        self.regions = case.regions
+        self.key = np.zeros(0, np.int8)
+        self.reorders = 0
+        self.handed_over = 0
+
+    def _marks(self):
+        g = self.mpm.grid
+        mark = np.zeros((1, g.n_nodes))
+        p = self.p
+        shape = np.array(g.shape, np.int64)
+        mark_mpm_cells(self.dim_tag, p.n_owned, p["x"], p["method"], g.origin, g.inv_dx,
+                       g.strides, shape, mark[0])
+        if self.mpm.halo_enabled:
+            self.mpm.halo.reduce([mark])
+            self.mpm.halo.broadcast([mark])
+        return mark[0], shape
+
+    def prepare(self):
+        """Order rows MPM | transition SPH | rest; tell the MPM stage its two prefixes."""
+        p = self.p
+        n = p.n_owned
+        p.drop_halo()
+        if self.handover:
+            self._hand_over()
+        mark, shape = self._marks()
+        if len(self.key) < n:
+            self.key = np.zeros(max(n, 2 * len(self.key)), np.int8)
+        key = self.key[:n]
+        g = self.mpm.grid
+        transition_keys(self.dim_tag, n, p["x"], p["method"], g.origin, g.inv_dx, g.strides,
+                        shape, mark, key)
+        if not is_sorted(key, n):
+            order = np.argsort(key, kind="stable")
+            p.take(order)
+            key[:] = key[order]
+            self.reorders += 1
+            if self.sph is not None:
+                self.sph.invalidate()
+        counts = np.bincount(key, minlength=3)
+        self.mpm.n_g2p = int(counts[0])
+        self.mpm.n_p2g = int(counts[0] + counts[1])
+
+    def after_mpm(self):
+        """MPM rows are SPH neighbours: give them the SPH density rho = m/V."""
+        p = self.p
+        n = self.mpm.n_g2p
+        p["rho"][:n] = p["mass"][:n] / p["vol"][:n]
+
+    def _hand_over(self):
+        """Relabel particles whose method region changed (walls never change)."""
+        from ..build import METHOD_CODES, region_methods
+
+        p = self.p
+        meth = p["method"]
+        want = region_methods(self.case, p["x"], meth)
+        change = np.nonzero((want != meth) & (meth != METHOD_CODES["wall"]))[0]
+        if len(change):
+            to_sph = change[want[change] == SPH]
+            # an MPM particle entering SPH starts from its MPM density; F and sigma carry on
+            p["rho"][to_sph] = p["mass"][to_sph] / p["vol"][to_sph]
+            meth[change] = want[change]
+            self.handed_over += len(change)
+            if self.sph is not None:
+                self.sph.invalidate()
