@@ -15,6 +15,21 @@ def _is_number(v):
     return isinstance(v, numbers.Real) and not isinstance(v, bool)
 
 
+def is_finite(v):
+    """A finite float or an int that fits a float (TOML integers have no size limit, and
+    math.isfinite raises OverflowError beyond 1.8e308)."""
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
+
+
+def _short(v):
+    """repr of a value, shortened (an integer of 400 digits is not a useful message)."""
+    text = repr(v)
+    return text if len(text) <= 40 else f"{text[:20]}...({len(text)} characters)"
+
+
 class Table:
     def __init__(self, data, path):
         if not isinstance(data, dict):
@@ -59,8 +74,8 @@ class Table:
         k = self.key(name)
         if not _is_number(v):
             raise ConfigError(k, f"expected a number, got {v!r}")
-        if not math.isfinite(v):
-            raise ConfigError(k, f"must be finite, got {v!r}")
+        if not is_finite(v):
+            raise ConfigError(k, f"must be finite, got {_short(v)}")
         if integer:
             if int(v) != v:
                 raise ConfigError(k, f"expected a whole number, got {v!r}")
@@ -89,8 +104,8 @@ class Table:
             raise ConfigError(k, f"expected a list of {length} numbers, got {v!r}")
         out = []
         for i, item in enumerate(v):
-            if not _is_number(item) or not math.isfinite(item):
-                raise ConfigError(f"{k}[{i}]", f"expected a finite number, got {item!r}")
+            if not _is_number(item) or not is_finite(item):
+                raise ConfigError(f"{k}[{i}]", f"expected a finite number, got {_short(item)}")
             if integer:
                 if int(item) != item:
                     raise ConfigError(f"{k}[{i}]", f"expected a whole number, got {item!r}")

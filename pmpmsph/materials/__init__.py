@@ -47,13 +47,26 @@ def _poisson(name, value):
         raise ConfigError(name, f"Poisson ratio must be > -1, got {value!r}")
 
 
+def _isfinite(v):
+    """math.isfinite that takes integers beyond the float range (TOML's) as not finite."""
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
+
+
+def _short(v):
+    text = repr(v)
+    return text if len(text) <= 40 else f"{text[:20]}...({len(text)} characters)"
+
+
 def _finite_numbers(obj):
     for f in fields(obj):
         v = getattr(obj, f.name)
         if not isinstance(v, numbers.Real) or isinstance(v, bool):
             raise ConfigError(f.name, f"expected a number, got {v!r}")
-        if not math.isfinite(v):
-            raise ConfigError(f.name, f"must be a finite number, got {v!r}")
+        if not _isfinite(v):
+            raise ConfigError(f.name, f"must be a finite number, got {_short(v)}")
 
 
 class _Material:
@@ -322,8 +335,8 @@ def material_from_table(table, key, dim):
         v = table[f]
         if not isinstance(v, numbers.Real) or isinstance(v, bool):
             raise ConfigError(f"{key}.{f}", f"expected a number, got {v!r}")
-        if not math.isfinite(v):
-            raise ConfigError(f"{key}.{f}", f"must be a finite number, got {v!r}")
+        if not _isfinite(v):
+            raise ConfigError(f"{key}.{f}", f"must be a finite number, got {_short(v)}")
         values[f] = float(v)
     try:
         if use_E_nu:
@@ -331,7 +344,22 @@ def material_from_table(table, key, dim):
             nu = values.pop("nu")
             _positive("E", E, "Young's modulus")
             _poisson("nu", nu)
-            return cls.from_E_nu(E, nu, **values)
-        return cls(**values)
+            mat = cls.from_E_nu(E, nu, **values)
+        else:
+            mat = cls(**values)
     except ConfigError as e:
         raise ConfigError(f"{key}.{e.key}", e.reason) from None
+    # finite inputs can still overflow (E = 1e308, nu near 0.5, rho = 1e-320): the time step
+    # would be zero or NaN, so the run could never advance
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        try:
+            speed = mat.sound_speed(dim)
+        except (OverflowError, ZeroDivisionError):
+            speed = math.inf
+        par = mat.params(dim)
+    if not (np.all(np.isfinite(par)) and math.isfinite(speed) and speed > 0):
+        stiff = next(f for f in required if f in ("E", "mu", "kappa"))
+        raise ConfigError(f"{key}.{stiff}", f"out of range for this model: with "
+                          f"{', '.join(f'{f} = {table[f]!r}' for f in required)} its moduli or "
+                          f"wave speed are not finite numbers ({speed!r})")
+    return mat

@@ -33,6 +33,9 @@ class Decomposition:
         self.dx = float(grid_spec.cell_size[self.axis])
         self.origin = float(grid_spec.origin[self.axis])
         size = dist.size
+        if self.ncells < MIN_SLAB:
+            raise ConfigError(key, f"{self.ncells} cells along axis {'xyz'[self.axis]}: the "
+                              f"grid needs at least {MIN_SLAB} there")
         if self.ncells < MIN_SLAB * size:
             raise ConfigError(key, f"{self.ncells} cells along axis {'xyz'[self.axis]} "
                               f"cannot make {size} slabs of at least {MIN_SLAB} cells: use at "
