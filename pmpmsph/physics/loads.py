@@ -27,14 +27,22 @@ class TractionLoads:
 
     @staticmethod
     def seed(specs, body_index, x, vol, spacing, body_name, dim):
-        """Full-load force of each new particle of one body (used while seeding)."""
+        """Full-load force of each new particle of one body (used while seeding).
+
+        The traction acts on the loaded face; a particle carries it over its share of the
+        face (volume / spacing along the normal), and when the region holds several
+        particle layers along the normal they share it equally (seed 000 §6.1 loads "the
+        first two layers": the applied stress is the surface traction, not twice it)."""
         f = np.zeros((len(x), dim))
         for s in specs:
             if s.body != body_name:
                 continue
             sel = _in_region(x, s.region)
+            if not np.any(sel):
+                continue
             axis = "xyz".index(s.normal[0])
-            area = vol[sel] / spacing[axis]
+            layers = len(np.unique(np.round(x[sel, axis] / spacing[axis]).astype(np.int64)))
+            area = vol[sel] / spacing[axis] / layers
             f[sel] += np.outer(area, np.array(s.traction))
         return f
 
