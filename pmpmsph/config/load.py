@@ -205,9 +205,12 @@ def _body_spacing(body, grid=None):
 
 
 def _sph(t, dim, bodies, materials, grid=None, coupled=False):
-    """The [sph] section; h defaults to h_factor x the particle spacing (seed 004 §2), and
-    to the cell size in a coupled scene (seed 000 §4: the SPH smoothing length equals the
-    cell width, so both methods resolve the same scale)."""
+    """The [sph] section; h defaults to h_factor x the particle spacing (seed 004 §2), also
+    in a coupled scene. Seed 000 §4 sets h to the cell width; with its two particles per
+    cell that is h = 2 spacings, where the cubic spline leaves the odd-even particle mode
+    without stiffness and a loaded bar settles into a sawtooth (tests/verification/
+    test_coupled.py: mean strain 1.20 x the exact one, against exact with 1.3 spacings).
+    Give `h` = the cell size to follow the seed literally."""
     solids = [b for b in bodies if (b.method == "sph" or coupled) and not b.wall]
     spacing = min((_body_spacing(b, grid) for b in solids), default=0.0)
     if spacing == 0.0:

@@ -42,7 +42,8 @@ def _bin(x, n, dim, lo, inv, ncell):
 
 
 @njit
-def _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, r2, start, index, count_only):
+def _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, r2, start, index, count_only,
+          half):
     """Count (count_only) or write the neighbours of the first n_query rows."""
     total = 0
     for i in range(n_query):
@@ -64,6 +65,8 @@ def _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, r2, start, index, co
                 c_lo = lo0 + ncell[0] * (c1 + ncell[1] * c2)
                 c_hi = hi0 + ncell[0] * (c1 + ncell[1] * c2)
                 for s in range(head[c_lo], head[c_hi + 1]):
+                    if half and order[s] <= i:
+                        continue
                     d2 = 0.0
                     for a in range(dim):
                         d = x[i, a] - xs[s, a]
@@ -77,8 +80,10 @@ def _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, r2, start, index, co
     return start[n_query] if count_only else 0
 
 
-def neighbour_lists(x, n_query, radius):
-    """CSR neighbour lists (start, index) of rows [0, n_query) among all rows of x."""
+def neighbour_lists(x, n_query, radius, half=False):
+    """CSR neighbour lists (start, index) of rows [0, n_query) among all rows of x. With
+    `half`, row i lists only rows j > i (each pair among the query rows once; every pair
+    with a later row, e.g. a halo row, in the query row's list), for pair-symmetric loops."""
     x = np.ascontiguousarray(x)
     n, dim = x.shape
     start = np.zeros(n_query + 1, np.int64)
@@ -97,10 +102,10 @@ def neighbour_lists(x, n_query, radius):
     head, order = _bin(x, n, dim, lo, inv, ncell)
     xs = x[order]  # positions in cell order: the candidate scans read memory contiguously
     npairs = _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, radius * radius, start,
-                   np.zeros(0, np.int64), True)
+                   np.zeros(0, np.int64), True, half)
     index = np.empty(npairs, np.int64)
     _scan(x, xs, n_query, dim, lo, inv, ncell, head, order, radius * radius, start, index,
-          False)
+          False, half)
     return start, index
 
 

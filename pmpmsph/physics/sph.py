@@ -19,8 +19,8 @@ import numpy as np
 
 from ..kernels.neighbours import moved_beyond, neighbour_lists
 from ..kernels.sph import (advance, artificial_stress, cayley_update, drift, first_outside,
-                           kick, pair_stress, sound_speeds, sph_rates, sph_stress,
-                           sync_ghost_velocity, wall_state)
+                           kick, pair_stress, sound_speeds, sph_rates_pairs, sph_stress,
+                           sync_ghost_velocity, wall_state_pairs)
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..particles import FieldSpec
 from ..timing import Timers
@@ -127,7 +127,8 @@ class SPHStage:
                 self.halo.refresh(("x", "v") + (("vg",) if "vg" in p else ()))
         with t.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"), p.with_halo("v"),
+            sph_rates_pairs(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+                      p.with_halo("v"),
                       vg, p.with_halo("mass"), p.with_halo("rho"), p.with_halo("S"),
                       p.with_halo("cs"), p.with_halo("method"), self.start, self.index, 0.0,
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
@@ -150,8 +151,9 @@ class SPHStage:
                 with t.phase("halo"):
                     self.halo.exchange()
             with t.phase("neighbours"):
+                # half lists: the rates loop takes every pair once, for both ends
                 self.start, self.index = neighbour_lists(p.with_halo("x"), p.n_owned,
-                                                         self.radius + self.skin)
+                                                         self.radius + self.skin, half=True)
             self.x_build = p["x"].copy()
             self.n_total_build = p.n_total
             self.rebuilds += 1
@@ -173,8 +175,8 @@ class SPHStage:
             with t.phase("sph"):
                 sync_ghost_velocity(nt, p.with_halo("method"), p.with_halo("v"),
                                     p.with_halo("vg"))
-                wall_state(self.dim, self.kern, self.h, n, x, p.with_halo("v"),
-                           p.with_halo("mass"), p.with_halo("rho"), p.with_halo("sigma"),
+                wall_state_pairs(self.dim, self.kern, self.h, n, x, p.with_halo("v"),
+                           p.with_halo("rho"), p.with_halo("sigma"),
                            p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
                            self.mtypes, self.mparams, self.gravity, self.no_slip,
                            p.with_halo("vg"))
@@ -190,7 +192,7 @@ class SPHStage:
             if self.use_as:
                 artificial_stress(self.dim, nt, sigma, rho, self.spec.artificial_stress, R)
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates(self.dim_tag, self.kern_tag, self.h, n, x, p.with_halo("v"), vg,
+            sph_rates_pairs(self.dim_tag, self.kern_tag, self.h, n, x, p.with_halo("v"), vg,
                       p.with_halo("mass"), rho, p.with_halo("S"), p.with_halo("cs"),
                       p.with_halo("method"), self.start, self.index, self.spec.av_alpha,
                       self.spec.av_beta, self.use_as, R, self.spec.artificial_stress_exponent,
