@@ -33,12 +33,28 @@ def main(argv=None):
     sc.add_argument("--out", default="bench_results")
     sc.add_argument("--output-every", type=int, default=0,
                     help="also write a snapshot every N steps (output phase)")
+    io = sub.add_parser("io", help="output overhead and write bandwidth (bench/io.py)")
+    io.add_argument("--ranks", type=int, default=2)
+    io.add_argument("--particles", type=int, default=1_000_000)
+    io.add_argument("--steps", type=int, default=200)
+    io.add_argument("--every", type=int, default=100, help="snapshot every N steps")
+    io.add_argument("--repeat", type=int, default=1, help="interleaved repeats, best kept")
+    io.add_argument("--out", default="bench_results")
     argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] == "io-worker":
+        from .io import worker
+
+        return worker(argv[1:])
     if argv and argv[0] == "scaling-worker":
         from .scaling import worker
 
         return worker(argv[1:])
     args = ap.parse_args(argv)
+    if args.command == "io":
+        from .io import run
+
+        run(args.ranks, args.particles, args.steps, args.every, args.out, args.repeat)
+        return 0
     if args.command == "scaling":
         from .scaling import run
 
@@ -97,7 +113,7 @@ def throughput_sph(args, run_peer):
               f"{r['rate'] / 1e6:>20.2f}", flush=True)
         ph = r["phases"]
         print("   phases per step (ms): " + ", ".join(
-            f"{k} {1e3 * v / max(1, 4 * args.steps + 20):.3f}" for k, v in sorted(ph.items())
+            f"{k} {1e3 * v / (args.repeat * args.steps + 20):.3f}" for k, v in sorted(ph.items())
             if k not in ("setup", "jit_warmup", "run")))
         if args.no_peers:
             continue
