@@ -552,13 +552,20 @@ def wall_state_pairs(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start
 
 
 @njit
-def sph_rates_pairs(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, start,
-                    index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping, acc,
-                    drho, L, want_force, want_L):
+def sph_rates_pairs(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
+                    start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
+                    acc, drho, L, want_force, want_L):
     """`sph_rates` over half neighbour lists: every pair is evaluated once and its
     contribution added to both ends (grad_b W_ba = -grad_a W_ab, the pair term of eq. 2.6
     is symmetric), halving the kernel evaluations. Same equations, same results to
-    round-off."""
+    round-off.
+
+    Across a material interface (mat_a != mat_b, e.g. water against an elastic MPM
+    obstacle) the pair transmits only compressive isotropic stress: the stress term is
+    -(p_a+/rho_a^2 + p_b+/rho_b^2) I with p+ = max(-tr(sigma)/3, 0) (plus the artificial
+    viscosity), a frictionless, non-adhesive contact. The full sigma/rho^2 term would let a
+    solid in tension pull fluid particles into it; within one material (the coupling of
+    seed 000) the full term is used."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     eps2 = 0.01 * h * h
@@ -645,13 +652,22 @@ def sph_rates_pairs(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, m
                 eta = h * vx / (r2 + eps2)
                 pi = (-av_alpha * 0.5 * (cs[a] + cs[b]) * eta + av_beta * eta * eta) / (
                     0.5 * (rho[a] + rho[b]))
-            t0 = S[a, 0] + S[b, 0] - pi
-            t1 = S[a, 1] + S[b, 1] - pi if dim > 1 else 0.0
-            t2 = S[a, 2] + S[b, 2] - pi if dim > 2 else 0.0
-            t3 = S[a, 3] + S[b, 3] if dim > 1 else 0.0
-            t4 = S[a, 4] + S[b, 4] if dim > 2 else 0.0
-            t5 = S[a, 5] + S[b, 5] if dim > 2 else 0.0
-            if use_as:
+            if mat[a] == mat[b]:
+                t0 = S[a, 0] + S[b, 0] - pi
+                t1 = S[a, 1] + S[b, 1] - pi if dim > 1 else 0.0
+                t2 = S[a, 2] + S[b, 2] - pi if dim > 2 else 0.0
+                t3 = S[a, 3] + S[b, 3] if dim > 1 else 0.0
+                t4 = S[a, 4] + S[b, 4] if dim > 2 else 0.0
+                t5 = S[a, 5] + S[b, 5] if dim > 2 else 0.0
+            else:  # material interface: compressive pressure only
+                pa = -(S[a, 0] + S[a, 1] + S[a, 2]) / 3.0
+                pb = -(S[b, 0] + S[b, 1] + S[b, 2]) / 3.0
+                q = -(max(pa, 0.0) + max(pb, 0.0)) - pi
+                t0 = q
+                t1 = q if dim > 1 else 0.0
+                t2 = q if dim > 2 else 0.0
+                t3 = t4 = t5 = 0.0
+            if use_as and mat[a] == mat[b]:
                 f = (kernel_w(kern, dim, r, h) / w_dp) ** as_n
                 t0 += f * (R[a, 0] + R[b, 0])
                 if dim > 1:

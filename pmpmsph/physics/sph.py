@@ -130,7 +130,8 @@ class SPHStage:
             sph_rates_pairs(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
                       p.with_halo("v"),
                       vg, p.with_halo("mass"), p.with_halo("rho"), p.with_halo("S"),
-                      p.with_halo("cs"), p.with_halo("method"), self.start, self.index, 0.0,
+                      p.with_halo("cs"), p.with_halo("method"), p.with_halo("mat"),
+                      self.start, self.index, 0.0,
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
                       p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True)
 
@@ -194,7 +195,8 @@ class SPHStage:
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
             sph_rates_pairs(self.dim_tag, self.kern_tag, self.h, n, x, p.with_halo("v"), vg,
                       p.with_halo("mass"), rho, p.with_halo("S"), p.with_halo("cs"),
-                      p.with_halo("method"), self.start, self.index, self.spec.av_alpha,
+                      p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
+                      self.spec.av_alpha,
                       self.spec.av_beta, self.use_as, R, self.spec.artificial_stress_exponent,
                       self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
                       p.with_halo("drho"), p.with_halo("L"), True, self.want_L)
