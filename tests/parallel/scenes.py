@@ -71,7 +71,7 @@ def sph_dam_break(dx=0.05, integrator="predictor_corrector", walls="slip", balan
     the falling column crosses the slab faces at once."""
     sc = Scene(2, domain=dict(min=[-0.3, -0.3], max=[4.3, 2.6]), gravity=[0, -9.81],
                time=dict(end=1.0, cfl=0.125),
-               sph=dict(h_factor=1.3, integrator=integrator, walls=walls,
+               sph=dict(kernel="wendland", h_factor=1.3, integrator=integrator, walls=walls,
                         viscosity=dict(alpha=0.1, beta=0.0)),
                parallel=dict(axis=axis, balance_every=balance_every))
     sc.material("water", model="tait", rho=1000.0, kappa=560571.4, gamma=7.0, mu=0.0)
