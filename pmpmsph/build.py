@@ -105,6 +105,11 @@ def build_particles(case, keep=None):
             ps.declare(spec)
         if case.sph.formulation == "total":
             ps.copy_to_halo("vol0")
+    if case.coupled:
+        from .physics.coupling import Coupling
+
+        for spec in Coupling.fields(case):
+            ps.declare(spec)
     mats = list(case.materials.values())
     mat_names = list(case.materials)
     state_size = max(m.state_size for m in mats)

@@ -23,7 +23,7 @@ from .sph_kernels import kernel_dwdr, kernel_w
 
 MPM = 0
 SPH = 1
-WALL = 2
+WALL = 2  # (MPM is used by the coupled pair forces)
 
 
 @njit
@@ -554,7 +554,7 @@ def wall_state_pairs(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start
 @njit
 def sph_rates_pairs(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
                     start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
-                    acc, drho, L, want_force, want_L):
+                    acc, drho, L, want_force, want_L, fsi, want_fsi):
     """`sph_rates` over half neighbour lists: every pair is evaluated once and its
     contribution added to both ends (grad_b W_ba = -grad_a W_ab, the pair term of eq. 2.6
     is symmetric), halving the kernel evaluations. Same equations, same results to
@@ -565,11 +565,21 @@ def sph_rates_pairs(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, m
     -(p_a+/rho_a^2 + p_b+/rho_b^2) I with p+ = max(-tr(sigma)/3, 0) (plus the artificial
     viscosity), a frictionless, non-adhesive contact. The full sigma/rho^2 term would let a
     solid in tension pull fluid particles into it; within one material (the coupling of
-    seed 000) the full term is used."""
+    seed 000) the full term is used.
+
+    With `want_fsi`, an owned MPM point b whose SPH neighbour a is of another material takes
+    the reaction of the pair force, fsi_b = -m_a m_b (pair term) (force units): the SPH
+    particle pushes the MPM body as much as it is pushed (momentum is exchanged, not made),
+    applied by the caller as an external force in the next P2G."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     eps2 = 0.01 * h * h
     h4 = 4.0 * h * h
+    if want_fsi:
+        for a in range(n_query):
+            if method[a] == MPM:
+                for i in range(dim):
+                    fsi[a, i] = 0.0
     for a in range(n_query):
         if method[a] == SPH:
             drho[a] = 0.0
@@ -588,10 +598,14 @@ def sph_rates_pairs(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, m
         va1 = v[a, 1] if dim > 1 else 0.0
         va2 = v[a, 2] if dim > 2 else 0.0
         ma = mass[a]
+        mpm_a = want_fsi and method[a] == MPM
         for k in range(start[a], start[a + 1]):
             b = index[k]
             upd_b = b < n_query and method[b] == SPH
-            if not (upd_a or upd_b):
+            fsi_a = mpm_a and method[b] == SPH and mat[a] != mat[b]
+            fsi_b = (want_fsi and upd_a and method[b] == MPM and b < n_query
+                     and mat[a] != mat[b])
+            if not (upd_a or upd_b or fsi_a):
                 continue
             xab0 = xa0 - x[b, 0]
             xab1 = xa1 - x[b, 1] if dim > 1 else 0.0
@@ -692,6 +706,18 @@ def sph_rates_pairs(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, m
                     acc[b, 1] -= ma * f1
                 if dim > 2:
                     acc[b, 2] -= ma * f2
+            if fsi_a:  # b (SPH) gets -m_a f per unit mass: a takes +m_a m_b f
+                fsi[a, 0] += ma * mb * f0
+                if dim > 1:
+                    fsi[a, 1] += ma * mb * f1
+                if dim > 2:
+                    fsi[a, 2] += ma * mb * f2
+            if fsi_b:  # a (SPH) gets +m_b f per unit mass: b takes -m_a m_b f
+                fsi[b, 0] -= ma * mb * f0
+                if dim > 1:
+                    fsi[b, 1] -= ma * mb * f1
+                if dim > 2:
+                    fsi[b, 2] -= ma * mb * f2
     for a in range(n_query):
         if method[a] != SPH:
             continue

@@ -23,11 +23,13 @@ SPH = 1
 
 
 @njit
-def mark_mpm_cells(dim_tag, n, x, method, origin, inv_dx, strides, shape, mark):
-    """mark[node] = 1 for the corner nodes of every cell holding an MPM row of [0, n)."""
+def mark_mpm_cells(dim_tag, n, x, method, mat, material, origin, inv_dx, strides, shape,
+                   mark):
+    """mark[node] = 1 for the corner nodes of every cell holding an MPM row of [0, n) of
+    `material`."""
     dim = len(dim_tag)
     for p in range(n):
-        if method[p] != MPM:
+        if method[p] != MPM or mat[p] != material:
             continue
         c0 = min(max(int(np.floor((x[p, 0] - origin[0]) * inv_dx)), 0), shape[0] - 2)
         c1 = 0
@@ -48,17 +50,18 @@ def mark_mpm_cells(dim_tag, n, x, method, origin, inv_dx, strides, shape, mark):
 
 
 @njit
-def transition_keys(dim_tag, n, x, method, origin, inv_dx, strides, shape, mark, key):
-    """key = 0 for MPM rows, 1 for SPH rows within one cell of a marked cell (a marked node
-    among the nodes of the 3^dim cells around its own), 2 for the other rows."""
+def transition_keys(dim_tag, n, x, method, mat, material, origin, inv_dx, strides, shape,
+                    mark, key):
+    """For the SPH rows of `material`: key = 1 if within one cell of a marked cell (a marked
+    node among the nodes of the 3^dim cells around its own). With material < 0 instead
+    initialise: key = 0 for MPM rows, 2 for all others."""
     dim = len(dim_tag)
     c = np.zeros(3, np.int64)
     for p in range(n):
-        if method[p] == MPM:
-            key[p] = 0
+        if material < 0:
+            key[p] = 0 if method[p] == MPM else 2
             continue
-        key[p] = 2
-        if method[p] != SPH:
+        if method[p] != SPH or mat[p] != material:
             continue
         for a in range(dim):
             c[a] = int(np.floor((x[p, a] - origin[a]) * inv_dx))
@@ -97,6 +100,12 @@ def is_sorted(key, n):
 class Coupling:
     """Keeps the owned rows ordered for the coupled step and hands particles over."""
 
+    @staticmethod
+    def fields(case):
+        from ..particles import FieldSpec
+
+        return [FieldSpec("fsi", ("dim",)), FieldSpec("fext", ("dim",), migrate=False)]
+
     def __init__(self, case, particles, mpm, sph, regions=None):
         self.case = case
         self.p = particles
@@ -106,16 +115,22 @@ class Coupling:
         self.handover = case.coupling.handover
         self.regions = case.regions
         self.key = np.zeros(0, np.int8)
+        self.loads = bool(case.loads)
+        names = list(case.materials)
+        from ..build import region_methods  # noqa: F401  (import check: regions resolve)
+
+        self.mpm_materials = sorted({names.index(b.material) for b in case.bodies
+                                     if b.method == "mpm" or case.regions})
         self.reorders = 0
         self.handed_over = 0
 
-    def _marks(self):
+    def _marks(self, material):
         g = self.mpm.grid
         mark = np.zeros((1, g.n_nodes))
         p = self.p
         shape = np.array(g.shape, np.int64)
-        mark_mpm_cells(self.dim_tag, p.n_owned, p["x"], p["method"], g.origin, g.inv_dx,
-                       g.strides, shape, mark[0])
+        mark_mpm_cells(self.dim_tag, p.n_owned, p["x"], p["method"], p["mat"], material,
+                       g.origin, g.inv_dx, g.strides, shape, mark[0])
         if self.mpm.halo_enabled:
             self.mpm.halo.reduce([mark])
             self.mpm.halo.broadcast([mark])
@@ -128,13 +143,20 @@ class Coupling:
         p.drop_halo()
         if self.handover:
             self._hand_over()
-        mark, shape = self._marks()
         if len(self.key) < n:
             self.key = np.zeros(max(n, 2 * len(self.key)), np.int8)
         key = self.key[:n]
         g = self.mpm.grid
-        transition_keys(self.dim_tag, n, p["x"], p["method"], g.origin, g.inv_dx, g.strides,
-                        shape, mark, key)
+        shape = np.array(g.shape, np.int64)
+        transition_keys(self.dim_tag, n, p["x"], p["method"], p["mat"], -1, g.origin,
+                        g.inv_dx, g.strides, shape, np.zeros(1), key)
+        # the transition zone joins SPH particles to MPM ones of the same material (seed
+        # 000: one continuum, two discretisations); different materials meet through the
+        # SPH pair forces and their reactions instead (`fsi`)
+        for material in self.mpm_materials:
+            mark, shape = self._marks(material)
+            transition_keys(self.dim_tag, n, p["x"], p["method"], p["mat"], material,
+                            g.origin, g.inv_dx, g.strides, shape, mark, key)
         if not is_sorted(key, n):
             order = np.argsort(key, kind="stable")
             p.take(order)
@@ -145,6 +167,13 @@ class Coupling:
         counts = np.bincount(key, minlength=3)
         self.mpm.n_g2p = int(counts[0])
         self.mpm.n_p2g = int(counts[0] + counts[1])
+        # the reactions of the SPH pair forces on MPM points act as external forces in P2G
+        m = self.mpm.n_g2p
+        if self.loads:
+            p["fext"][:m] += p["fsi"][:m]
+        else:
+            p["fext"][:m] = p["fsi"][:m]
+        p["fext"][m:n] = 0.0
 
     def after_mpm(self):
         """MPM rows are SPH neighbours: give them the SPH density rho = m/V."""

@@ -133,7 +133,8 @@ class SPHStage:
                       p.with_halo("cs"), p.with_halo("method"), p.with_halo("mat"),
                       self.start, self.index, 0.0,
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
-                      p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True)
+                      p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True,
+                      np.zeros((0, self.dim)), False)
 
     def _need_rebuild(self):
         """Collective: rebuild if the rows changed or a particle moved half the skin."""
@@ -199,7 +200,9 @@ class SPHStage:
                       self.spec.av_alpha,
                       self.spec.av_beta, self.use_as, R, self.spec.artificial_stress_exponent,
                       self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
-                      p.with_halo("drho"), p.with_halo("L"), True, self.want_L)
+                      p.with_halo("drho"), p.with_halo("L"), True, self.want_L,
+                      p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
+                      "fsi" in p)
         self.evaluated = True
         self.evaluations += 1
 
