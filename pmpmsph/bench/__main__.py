@@ -38,7 +38,6 @@ def main(argv=None):
     io.add_argument("--particles", type=int, default=1_000_000)
     io.add_argument("--steps", type=int, default=200)
     io.add_argument("--every", type=int, default=100, help="snapshot every N steps")
-    io.add_argument("--repeat", type=int, default=1, help="interleaved repeats, best kept")
     io.add_argument("--out", default="bench_results")
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "io-worker":
@@ -53,7 +52,7 @@ def main(argv=None):
     if args.command == "io":
         from .io import run
 
-        run(args.ranks, args.particles, args.steps, args.every, args.out, args.repeat)
+        run(args.ranks, args.particles, args.steps, args.every, args.out)
         return 0
     if args.command == "scaling":
         from .scaling import run

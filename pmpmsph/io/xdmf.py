@@ -164,17 +164,20 @@ def write_xdmf(h5path, xdmf_path=None, cache=None):
 
 
 def rebuild_xdmf_main(argv=None):
-    """CLI: ``python -m pmpmsph xdmf RUN.h5 [-o RUN.xdmf]``; returns the exit status."""
+    """CLI: ``python -m pmpmsph xdmf RUN.h5|RUN [-o RUN.xdmf]``; returns the exit status."""
     parser = argparse.ArgumentParser(
         prog="pmpmsph xdmf",
         description="(Re)build the XDMF sidecar of pmpmsph snapshot files for ParaView.")
-    parser.add_argument("h5", nargs="+", help="snapshot file(s) written by a run")
+    parser.add_argument("h5", nargs="+", help="snapshot file(s) written by a run, or run "
+                        "folder(s) (their particles.h5)")
     parser.add_argument("-o", "--output", help="XDMF path (one input only; default RUN.xdmf)")
     args = parser.parse_args(argv)
     if args.output and len(args.h5) > 1:
         parser.error("--output needs exactly one input file")
     status = 0
     for h5 in args.h5:
+        if os.path.isdir(h5):
+            h5 = os.path.join(h5, "particles.h5")
         try:
             out = write_xdmf(h5, args.output)
         except (OSError, ValueError) as exc:

@@ -56,3 +56,11 @@ def test_vtu_export_reads_back(run_dir):
     assert main(["vtu", run_dir, "--step", "10", "--out", other]) == 0
     assert os.listdir(other) == ["particles_00000010.vtu"]
     assert main(["vtu", run_dir, "--step", "7"]) == 2
+
+
+def test_xdmf_rebuild_from_run_folder(run_dir):
+    xdmf = os.path.join(run_dir, "particles.xdmf")
+    os.remove(xdmf)
+    assert main(["xdmf", run_dir]) == 0
+    grids = ET.parse(xdmf).getroot().findall("Domain/Grid/Grid")
+    assert len(grids) == 3
