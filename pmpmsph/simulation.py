@@ -521,6 +521,11 @@ class Simulation:
             r, size = self.dist.rank, self.dist.size
             kw = {"rows": (n_total * r // size, n_total * (r + 1) // size)}
         rows = self._agree("--restart", lambda: read_rows(path, names, **kw))
+        for key, count in (("mat", len(self.case.materials)), ("body", len(self.case.bodies))):
+            top = int(self.dist.max(int(rows[key].max()) if len(rows[key]) else -1))
+            if top >= count:  # the kernels index tables with these: never out of range
+                raise ConfigError("--restart", f"checkpoint particles refer to {key} {top}, "
+                                  f"this case has {count}")
         p.drop_halo()
         p.n_owned = p.n_total = 0
         p.append(rows)

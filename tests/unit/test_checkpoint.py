@@ -104,3 +104,9 @@ def test_failure_writes_checkpoint_failed_and_keeps_the_last_good_one(tmp_path, 
     assert infos[-1].step == head["step"]
     assert main(["--restart", os.path.join(run, "checkpoint.h5"), "--no-output",
                  "--max-steps", "2"]) == 0  # the good one restarts
+    one_body = tmp_path / "one.toml"  # a case without the bullet: body 1 does not exist
+    one_body.write_text(CASE)
+    capsys.readouterr()
+    assert main(["--restart", os.path.join(run, "checkpoint.h5"), str(one_body),
+                 "--no-output"]) == 2
+    assert "refer to body 1" in capsys.readouterr().err
