@@ -116,15 +116,14 @@ class SPHStage:
 
     def kinematics(self):
         """drho and L only, at the current positions and velocities (the Verlet step needs
-        them at mid-step): halo positions/velocities refreshed, lists kept (the skin covers
-        the half drift)."""
+        them at mid-step)."""
         p, t = self.p, self.timers
         n = p.n_owned
         if "vg" in p:
             sync_ghost_velocity(n, p["method"], p["v"], p["vg"])
-        if self.halo_enabled:
-            with t.phase("halo"):
-                self.halo.refresh(("x", "v") + (("vg",) if "vg" in p else ()))
+        # rows may have moved since the last evaluation (migration): rebuild the lists and
+        # the halo if so (collectively), else refresh the halo in place
+        self._update_neighbours()
         with t.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
             sph_rates_pairs(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),

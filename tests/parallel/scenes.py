@@ -146,3 +146,19 @@ def coupled_stress_bar(h=0.1, transfer="musl", alpha=0.0):
         sc.load(body="bar", box=dict(min=[lo], max=[hi]), normal=face, stress=[-1e6],
                 ramp=0.002)
     return sc
+
+
+def handover_bar(v=50.0):
+    """A copper bar on [0.3, 0.5] moving at v through the boundary x = 0.6 of an SPH region
+    (MPM elsewhere) with `handover`: its particles turn from MPM to SPH as they cross."""
+    sc = Scene(1, grid=dict(origin=[0.0], cell_size=0.05, cells=[30]),
+               time=dict(end=0.006, cfl=0.2),
+               mpm=dict(shape="gimp", transfer="musl"),
+               sph=dict(integrator="verlet", viscosity=dict(alpha=0.0, beta=0.0)),
+               parallel=dict(balance_every=0))
+    sc.material("copper", model="linear_elastic", E=128e9, nu=0.3, rho=8790.0)
+    sc.body(name="bar", material="copper", shape="box", min=[0.3], max=[0.5], spacing=0.025,
+            velocity=[v])
+    sc.data["regions"] = [dict(method="sph", shape="box", min=[0.6], max=[1.5])]
+    sc.data["coupling"] = dict(handover=True)
+    return sc

@@ -43,3 +43,15 @@ def test_coupled_stress_bar_equals_one_rank():
     sim.run(max_steps=400)
     ref.run(max_steps=400)
     _compare(dist, sim, ref)
+
+
+def test_handover_equals_one_rank():
+    from scenes import handover_bar
+
+    dist = world()
+    sim = handover_bar().simulation(dist=dist)
+    ref = handover_bar().simulation(dist=serial())
+    sim.run()
+    ref.run()
+    assert dist.sum(sim.coupling.handed_over) == ref.coupling.handed_over > 0
+    _compare(dist, sim, ref)

@@ -123,3 +123,24 @@ def test_scene8_reversal_smooth_mode_coupled_and_mpm():
         err, drift = _reversal(mode, 1)
         print(mode, err, drift)
         assert err < 0.03 and drift < 0.03
+
+
+def test_handover_relabels_particles_that_cross_into_the_sph_region():
+    from scenes import handover_bar
+
+    sim = _serial(handover_bar())
+    p = sim.particles
+    n = p.n_owned
+    x0 = p["x"][:, 0].copy()
+    assert np.all(p["method"] == 0)
+    m0 = p["mass"].sum()
+    sim.run()
+    t = sim.time
+    assert np.all(p["method"] == 1)          # every particle crossed x = 0.6 and is SPH now
+    assert sim.coupling.handed_over == n
+    order = np.argsort(p["gid"])
+    # a free rigid translation stays one: positions x0 + v t, velocity v, no strain
+    assert np.allclose(p["x"][order, 0], x0 + 50.0 * t, rtol=0, atol=1e-9)
+    assert np.allclose(p["v"][:, 0], 50.0, rtol=1e-9)
+    assert np.allclose(p["F"][:, 0, 0], 1.0, atol=1e-9)
+    assert p["mass"].sum() == m0
