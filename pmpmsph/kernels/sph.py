@@ -138,53 +138,6 @@ def sync_ghost_velocity(n, method, v, vg):
 
 
 @njit
-def wall_state(dim, kern, h, n_query, x, v, mass, rho, sigma, method, mat, start, index,
-               mtypes, mparams, gravity, no_slip, vg):
-    """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
-    p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
-    rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I; the ghost
-    velocity vg_w = -v~ (no-slip) or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf."""
-    vt = np.zeros(3)
-    for w in range(n_query):
-        if method[w] != WALL:
-            continue
-        sw = 0.0
-        ps = 0.0
-        vt[:] = 0.0
-        for k in range(start[w], start[w + 1]):
-            f = index[k]
-            if method[f] == WALL:
-                continue
-            r2 = 0.0
-            gr = 0.0
-            for d in range(dim):
-                dx = x[w, d] - x[f, d]
-                r2 += dx * dx
-                gr += gravity[d] * dx
-            W = kernel_w(kern, dim, np.sqrt(r2), h)
-            pf = -(sigma[f, 0, 0] + sigma[f, 1, 1] + sigma[f, 2, 2]) / 3.0
-            ps += (pf + rho[f] * gr) * W
-            sw += W
-            for d in range(dim):
-                vt[d] += v[f, d] * W
-        mi = mat[w]
-        kappa = mparams[mi, 0]
-        gamma = mparams[mi, 1]
-        rho0 = mparams[mi, 2]
-        p = ps / sw if sw > 0.0 else 0.0
-        ratio = p / kappa + 1.0
-        if ratio < 1e-3:
-            ratio = 1e-3
-        rho[w] = rho0 * ratio ** (1.0 / gamma)
-        for i in range(3):
-            for j in range(3):
-                sigma[w, i, j] = -p if i == j else 0.0
-        sgn = -1.0 if no_slip else 1.0
-        for d in range(dim):
-            vg[w, d] = sgn * vt[d] / sw if sw > 0.0 else 0.0
-
-
-@njit
 def pair_stress(dim_tag, n, sigma, rho, S):
     """S_a = sigma_a / rho_a^2 as (xx, yy, zz, xy, yz, xz), for rows [0, n)."""
     for a in range(n):
@@ -195,121 +148,6 @@ def pair_stress(dim_tag, n, sigma, rho, S):
         S[a, 3] = sigma[a, 0, 1] * r2
         S[a, 4] = sigma[a, 1, 2] * r2
         S[a, 5] = sigma[a, 0, 2] * r2
-
-
-@njit
-def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, start, index,
-              av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping, acc, drho, L,
-              want_force, want_L):
-    """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
-    artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
-    damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
-    (eq. 2.9 before symmetrisation, with 1/rho_a for m_b/rho_b: this is the velocity gradient
-    whose stress power equals the work of the eq. 2.6 forces, so the semi-discrete energy is
-    conserved, and tr L = -drho/rho so rho det F stays constant), v~ = `vg`: the velocity, or
-    a wall neighbour's ghost velocity. With `want_force` False only drho and L are computed;
-    with `want_L` False L is not (inviscid fluids need no velocity gradient).
-    Pi_ab = (-alpha c_ab eta + beta eta^2)/rho_ab when approaching, eta = h v_ab.x_ab /
-    (r^2 + 0.01 h^2) (eqs. 2.7-2.8, with the usual 0.01 h^2 against r -> 0).
-    S = sigma/rho^2 and R are symmetric 6-vectors (xx, yy, zz, xy, yz, xz).
-    `dim = len(dim_tag)` and `kern = len(kern_tag) - 1` are compile-time constants, so the
-    unused components and the other kernel vanish from the machine code."""
-    dim = len(dim_tag)
-    kern = len(kern_tag) - 1
-    eps2 = 0.01 * h * h
-    h4 = 4.0 * h * h
-    for a in range(n_query):
-        if method[a] != SPH:
-            continue
-        a0 = a1 = a2 = 0.0
-        l00 = l01 = l02 = l10 = l11 = l12 = l20 = l21 = l22 = 0.0
-        dr = 0.0
-        xa0 = x[a, 0]
-        xa1 = x[a, 1] if dim > 1 else 0.0
-        xa2 = x[a, 2] if dim > 2 else 0.0
-        va0 = v[a, 0]
-        va1 = v[a, 1] if dim > 1 else 0.0
-        va2 = v[a, 2] if dim > 2 else 0.0
-        sa0, sa1, sa2, sa3, sa4, sa5 = S[a, 0], S[a, 1], S[a, 2], S[a, 3], S[a, 4], S[a, 5]
-        for k in range(start[a], start[a + 1]):
-            b = index[k]
-            xab0 = xa0 - x[b, 0]
-            xab1 = xa1 - x[b, 1] if dim > 1 else 0.0
-            xab2 = xa2 - x[b, 2] if dim > 2 else 0.0
-            r2 = xab0 * xab0 + xab1 * xab1 + xab2 * xab2
-            if r2 >= h4 or r2 == 0.0:
-                continue
-            r = np.sqrt(r2)
-            fr = kernel_dwdr(kern, dim, r, h) / r
-            g0 = fr * xab0
-            g1 = fr * xab1
-            g2 = fr * xab2
-            vab0 = va0 - v[b, 0]
-            vab1 = va1 - v[b, 1] if dim > 1 else 0.0
-            vab2 = va2 - v[b, 2] if dim > 2 else 0.0
-            mb = mass[b]
-            dr += mb * (vab0 * g0 + vab1 * g1 + vab2 * g2)
-            if want_L:
-                u0 = mb * (vg[b, 0] - va0)
-                l00 += u0 * g0
-                if dim > 1:
-                    u1 = mb * (vg[b, 1] - va1)
-                    l01 += u0 * g1
-                    l10 += u1 * g0
-                    l11 += u1 * g1
-                if dim > 2:
-                    u2 = mb * (vg[b, 2] - va2)
-                    l02 += u0 * g2
-                    l12 += u1 * g2
-                    l20 += u2 * g0
-                    l21 += u2 * g1
-                    l22 += u2 * g2
-            if not want_force:
-                continue
-            vx = vab0 * xab0 + vab1 * xab1 + vab2 * xab2
-            pi = 0.0
-            if vx < 0.0:
-                eta = h * vx / (r2 + eps2)
-                pi = (-av_alpha * 0.5 * (cs[a] + cs[b]) * eta + av_beta * eta * eta) / (
-                    0.5 * (rho[a] + rho[b]))
-            t0 = sa0 + S[b, 0] - pi
-            t1 = sa1 + S[b, 1] - pi if dim > 1 else 0.0
-            t2 = sa2 + S[b, 2] - pi if dim > 2 else 0.0
-            t3 = sa3 + S[b, 3] if dim > 1 else 0.0
-            t4 = sa4 + S[b, 4] if dim > 2 else 0.0
-            t5 = sa5 + S[b, 5] if dim > 2 else 0.0
-            if use_as:
-                f = (kernel_w(kern, dim, r, h) / w_dp) ** as_n
-                t0 += f * (R[a, 0] + R[b, 0])
-                if dim > 1:
-                    t1 += f * (R[a, 1] + R[b, 1])
-                    t3 += f * (R[a, 3] + R[b, 3])
-                if dim > 2:
-                    t2 += f * (R[a, 2] + R[b, 2])
-                    t4 += f * (R[a, 4] + R[b, 4])
-                    t5 += f * (R[a, 5] + R[b, 5])
-            a0 += mb * (t0 * g0 + t3 * g1 + t5 * g2)
-            if dim > 1:
-                a1 += mb * (t3 * g0 + t1 * g1 + t4 * g2)
-            if dim > 2:
-                a2 += mb * (t5 * g0 + t4 * g1 + t2 * g2)
-        if want_force:
-            acc[a, 0] = a0 + gravity[0] - damping * va0
-            if dim > 1:
-                acc[a, 1] = a1 + gravity[1] - damping * va1
-            if dim > 2:
-                acc[a, 2] = a2 + gravity[2] - damping * va2
-        drho[a] = dr
-        ir = 1.0 / rho[a]
-        L[a, 0, 0] = l00 * ir
-        L[a, 0, 1] = l01 * ir
-        L[a, 0, 2] = l02 * ir
-        L[a, 1, 0] = l10 * ir
-        L[a, 1, 1] = l11 * ir
-        L[a, 1, 2] = l12 * ir
-        L[a, 2, 0] = l20 * ir
-        L[a, 2, 1] = l21 * ir
-        L[a, 2, 2] = l22 * ir
 
 
 @njit
@@ -503,10 +341,14 @@ def first_outside(dim, n, x, lo, hi):
 
 
 @njit
-def wall_state_pairs(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, index,
-                     mtypes, mparams, gravity, no_slip, vg):
-    """`wall_state` over half neighbour lists (each pair once): the same Adami et al.
-    (2012) eq. 27 sums, gathered for both ends of every wall-fluid pair."""
+def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, index,
+               mtypes, mparams, gravity, no_slip, vg):
+    """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
+    p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
+    rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I; the ghost
+    velocity vg_w = -v~ (no-slip) or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf.
+    Over half neighbour lists (each pair once), the sums gathered for the wall end of every
+    wall-fluid pair; a halo wall is left to its owner (then refreshed in the halo)."""
     sw = np.zeros(n_query)
     ps = np.zeros(n_query)
     vt = np.zeros((n_query, 3))
@@ -552,13 +394,26 @@ def wall_state_pairs(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start
 
 
 @njit
-def sph_rates_pairs(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
-                    start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
-                    acc, drho, L, want_force, want_L, fsi, want_fsi):
-    """`sph_rates` over half neighbour lists: every pair is evaluated once and its
-    contribution added to both ends (grad_b W_ba = -grad_a W_ab, the pair term of eq. 2.6
-    is symmetric), halving the kernel evaluations. Same equations, same results to
-    round-off.
+def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
+              start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
+              acc, drho, L, want_force, want_L, fsi, want_fsi):
+    """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
+    artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
+    damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
+    (eq. 2.9 before symmetrisation, with 1/rho_a for m_b/rho_b: this is the velocity gradient
+    whose stress power equals the work of the eq. 2.6 forces, so the semi-discrete energy is
+    conserved, and tr L = -drho/rho so rho det F stays constant), v~ = `vg`: the velocity, or
+    a wall neighbour's ghost velocity. With `want_force` False only drho and L are computed;
+    with `want_L` False L is not (inviscid fluids need no velocity gradient).
+    Pi_ab = (-alpha c_ab eta + beta eta^2)/rho_ab when approaching, eta = h v_ab.x_ab /
+    (r^2 + 0.01 h^2) (eqs. 2.7-2.8, with the usual 0.01 h^2 against r -> 0).
+    S = sigma/rho^2 and R are symmetric 6-vectors (xx, yy, zz, xy, yz, xz).
+    `dim = len(dim_tag)` and `kern = len(kern_tag) - 1` are compile-time constants, so the
+    unused components and the other kernel vanish from the machine code.
+
+    Over half neighbour lists: every pair is evaluated once and its contribution added to
+    both ends (grad_b W_ba = -grad_a W_ab, the pair term of eq. 2.6 is symmetric), halving
+    the kernel evaluations.
 
     Across a material interface (mat_a != mat_b, e.g. water against an elastic MPM
     obstacle) the pair transmits only compressive isotropic stress: the stress term is

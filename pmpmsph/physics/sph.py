@@ -19,8 +19,8 @@ import numpy as np
 
 from ..kernels.neighbours import moved_beyond, neighbour_lists
 from ..kernels.sph import (advance, artificial_stress, cayley_update, drift, first_outside,
-                           kick, pair_stress, sound_speeds, sph_rates_pairs, sph_stress,
-                           sync_ghost_velocity, wall_state_pairs)
+                           kick, pair_stress, sound_speeds, sph_rates, sph_stress,
+                           sync_ghost_velocity, wall_state)
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..particles import FieldSpec
 from ..timing import Timers
@@ -126,7 +126,7 @@ class SPHStage:
         self._update_neighbours()
         with t.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates_pairs(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+            sph_rates(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
                       p.with_halo("v"),
                       vg, p.with_halo("mass"), p.with_halo("rho"), p.with_halo("S"),
                       p.with_halo("cs"), p.with_halo("method"), p.with_halo("mat"),
@@ -176,7 +176,7 @@ class SPHStage:
             with t.phase("sph"):
                 sync_ghost_velocity(nt, p.with_halo("method"), p.with_halo("v"),
                                     p.with_halo("vg"))
-                wall_state_pairs(self.dim, self.kern, self.h, n, x, p.with_halo("v"),
+                wall_state(self.dim, self.kern, self.h, n, x, p.with_halo("v"),
                            p.with_halo("rho"), p.with_halo("sigma"),
                            p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
                            self.mtypes, self.mparams, self.gravity, self.no_slip,
@@ -193,7 +193,7 @@ class SPHStage:
             if self.use_as:
                 artificial_stress(self.dim, nt, sigma, rho, self.spec.artificial_stress, R)
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates_pairs(self.dim_tag, self.kern_tag, self.h, n, x, p.with_halo("v"), vg,
+            sph_rates(self.dim_tag, self.kern_tag, self.h, n, x, p.with_halo("v"), vg,
                       p.with_halo("mass"), rho, p.with_halo("S"), p.with_halo("cs"),
                       p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
                       self.spec.av_alpha,
