@@ -219,8 +219,12 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     if t.has("h") and t.has("h_factor"):
         raise ConfigError(t.key("h_factor"), "give either sph.h or sph.h_factor, not both")
     h = t.number("h", None, min_open=0.0)
+    formulation = t.string("formulation", "updated", choices=SPH_FORMULATIONS)
     if h is None:
-        h = t.number("h_factor", 1.3, min_open=0.5, max=4.0) * spacing
+        # total-Lagrangian SPH: 1.4 spacings, the top of seed 004's range, delays the
+        # free-edge mode of its force/F combination (kernels/tlsph.py)
+        default = 1.4 if formulation == "total" else 1.3
+        h = t.number("h_factor", default, min_open=0.5, max=4.0) * spacing
     elif not 0.5 * spacing < h <= 4.0 * spacing:  # as h_factor: no neighbour / too many
         raise ConfigError(t.key("h"), f"{h:g} is not in (0.5, 4] x the particle spacing "
                           f"{spacing:g} (below, the kernel support 2h holds no neighbour; "
@@ -239,7 +243,7 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
                               "material (their density follows the extrapolated pressure)")
     spec = SPHSpec(
         kernel=kernel, h=h, spacing=spacing,
-        formulation=t.string("formulation", "updated", choices=SPH_FORMULATIONS),
+        formulation=formulation,
         correction=t.boolean("correction", True),
         deformation=t.string("deformation", "reference", choices=("reference", "rate")),
         force=t.string("force", "current", choices=("current", "reference")),
