@@ -307,11 +307,21 @@ class SPHStage:
         return max_signal(self.dim_tag, p.n_owned, p["cs"], p["v"])
 
     def stable_dt(self):
-        """Viscous limit 0.125 h^2 / nu of the fluids (CFL is handled by the caller)."""
+        """Viscous limit 0.125 h^2 / nu of the fluids, and 1 / max |drho/dt| / rho (times the
+        caller's Courant number: the density changes by at most that fraction in a step, so
+        a violent expansion cannot drive the continuity density through zero). Global
+        (collective when parallel); the CFL limit is the caller's."""
         from ..materials.codes import TAIT_FLUID
 
         limit = np.inf
         for code, par in zip(self.mtypes, self.mparams):
             if code == TAIT_FLUID and par[3] > 0:
                 limit = min(limit, 0.125 * self.h * self.h * par[2] / par[3])
+        p = self.p
+        if self.evaluated and p.n_owned and "drho" in p:
+            rate = float(np.max(np.abs(p["drho"]) / p["rho"]))
+            if rate > 0:
+                limit = min(limit, 1.0 / rate)
+        if self.halo_enabled and self.dist.size > 1:
+            limit = self.dist.min(limit)
         return limit
