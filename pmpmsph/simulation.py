@@ -83,6 +83,8 @@ class Simulation:
         self._last_snapshot_step = -1
         fault = os.environ.get("PMPMSPH_INJECT_FAULT")  # "rank:step", for the fault tests
         self._fault = tuple(int(v) for v in fault.split(":")) if fault else None
+        nan = os.environ.get("PMPMSPH_INJECT_NAN")  # "rank:step": a NaN velocity there
+        self._nan = tuple(int(v) for v in nan.split(":")) if nan else None
         self._next_snapshot_time = 0.0
         if write_output and out_dir is not None:
             self._open_output(overwrite)
@@ -266,6 +268,9 @@ class Simulation:
         if self._fault is not None and self._fault == (self.dist.rank, self.step_count):
             raise RuntimeError(f"fault injected on rank {self.dist.rank} at step "
                                f"{self.step_count} (PMPMSPH_INJECT_FAULT)")
+        if (self._nan is not None and self._nan == (self.dist.rank, self.step_count)
+                and self.particles.n_owned):
+            self.particles["v"][0] = np.nan  # the fault tests' NaN, caught by the step checks
         x_before = None
         if self.prescribed is not None:
             self.prescribed.apply(self.time)
