@@ -106,19 +106,16 @@ class Coupling:
 
         return [FieldSpec("fsi", ("dim",)), FieldSpec("fext", ("dim",), migrate=False)]
 
-    def __init__(self, case, particles, mpm, sph, regions=None):
+    def __init__(self, case, particles, mpm, sph):
         self.case = case
         self.p = particles
         self.mpm = mpm
         self.sph = sph
         self.dim_tag = (0,) * case.dim
         self.handover = case.coupling.handover
-        self.regions = case.regions
         self.key = np.zeros(0, np.int8)
         self.loads = bool(case.loads)
         names = list(case.materials)
-        from ..build import region_methods  # noqa: F401  (import check: regions resolve)
-
         self.mpm_materials = sorted({names.index(b.material) for b in case.bodies
                                      if b.method == "mpm" or case.regions})
         self.reorders = 0

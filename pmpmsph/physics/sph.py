@@ -18,9 +18,10 @@ and the halo is refreshed at every evaluation.
 import numpy as np
 
 from ..kernels.neighbours import moved_beyond, neighbour_lists
-from ..kernels.sph import (advance, artificial_stress, cayley_update, drift, first_outside,
-                           kick, pair_stress, sound_speeds, sph_rates, sph_stress,
-                           sync_ghost_velocity, wall_state)
+from ..kernels.sph import (artificial_stress, pair_stress, sound_speeds, sph_rates,
+                           sph_stress, sync_ghost_velocity, wall_state)
+from ..kernels.sph_integrate import (advance, cayley_update, drift, first_outside, kick,
+                                     max_signal)
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..particles import FieldSpec
 from ..timing import Timers
@@ -210,7 +211,7 @@ class SPHStage:
         p = self.p
         n = p.n_owned
         with self.timers.phase("sph"):
-            return sph_stress(self.dim, n, p["method"], p["mat"], p["rho"], p["F"], p["L"], dt,
+            return sph_stress(n, p["method"], p["mat"], p["rho"], p["F"], p["L"], dt,
                               mstate_in, self._mstate(n), self.mtypes, self.mparams,
                               p["sigma"], p["vol"], p["mass"])
 
@@ -301,8 +302,6 @@ class SPHStage:
         the first one: the caller then uses the material wave speeds)."""
         if not self.evaluated or "cs" not in self.p:
             return None
-        from ..kernels.sph import max_signal
-
         p = self.p
         return max_signal(self.dim_tag, p.n_owned, p["cs"], p["v"])
 

@@ -20,7 +20,8 @@ import numpy as np
 
 from ..errors import RunError
 from ..kernels.neighbours import neighbour_lists
-from ..kernels.sph import advance, drift, first_outside, kick
+from ..kernels.sph import sph_stress_all
+from ..kernels.sph_integrate import drift, first_outside, kick
 from ..kernels.sph_kernels import SUPPORT
 from ..kernels.tlsph import (deformation_gradient, first_piola, internal_force,
                              kernel_correction, velocity_gradient)
@@ -142,9 +143,9 @@ class TLSPHStage(SPHStage):
             J = np.linalg.det(F)
             vol[:] = J * vol0
             p.with_halo("rho")[:] = p.with_halo("mass") / vol
-            if np.any(~(J > 0)):
-                bad = int(np.nonzero(~(J > 0))[0][0])
-                self._bad = bad if bad < n else -1
+            inverted = np.nonzero(~(J[:n] > 0))[0]  # owned rows only: halo rows are their
+            if len(inverted) and self._bad < 0:     # owners' to report
+                self._bad = int(inverted[0])
             need_current = self.current_force or self.rate
             if need_current:
                 start, index = neighbour_lists(x, nt, SUPPORT * self.h)
@@ -156,8 +157,6 @@ class TLSPHStage(SPHStage):
             mstate = p.with_halo("mstate") if "mstate" in p else np.zeros((nt, 0))
             m0 = p.with_halo("mstate0") if "mstate0" in p else mstate
             mstate[:] = m0
-            from ..kernels.sph import sph_stress_all
-
             sph_stress_all(nt, p.with_halo("mat"), F, p.with_halo("L"), dt_state, mstate,
                            self.mtypes, self.mparams, p.with_halo("sigma"))
             f = p.with_halo("force")

@@ -86,13 +86,13 @@ def sph_dam_break(dx=0.05, integrator="predictor_corrector", walls="slip", balan
 
 
 def tl_plate(n=21, corrected=True, eta=None, integrator="rk3", force="current",
-             deformation="reference", k_h=1.4, cfl=0.3):
+             deformation="reference", k_h=1.4, cfl=0.3, end=1.2):
     """BENCHMARKS.md scene 12 (seed 004 §6.1): 1 x 1 mm plane-strain plate, Hartmann-Neff
     neo-Hookean mu = 1.25 MPa, k = 5.833 MPa, rho = 3, free surface, total-Lagrangian SPH
     with n x n particles (h = k_h x spacing). The caller sets v1 = 0.8 x2 (`shear_velocity`).
     With `eta`: the Maxwell body of scene 13."""
     sc = Scene(2, domain=dict(min=[-1.0, -1.0], max=[3.0, 2.0]),
-               time=dict(end=1.2, cfl=cfl),
+               time=dict(end=end, cfl=cfl),
                sph=dict(formulation="total", correction=corrected, h_factor=k_h,
                         integrator=integrator, force=force, deformation=deformation),
                parallel=dict(axis="x", balance_every=0))
