@@ -124,6 +124,19 @@ def _inverse(M, dim, Minv):
     return d
 
 
+@njit(inline="always")
+def _pair_kernel(x, a, b, dim, kind, h, r):
+    """r = x_a - x_b (into `r`) and (W(|r|), W'(|r|)/|r|) of the plain kernel."""
+    rn2 = 0.0
+    for i in range(dim):
+        r[i] = x[a, i] - x[b, i]
+        rn2 += r[i] * r[i]
+    rn = np.sqrt(rn2)
+    w = kernel_w(kind, dim, rn, h)
+    dw = kernel_dwdr(kind, dim, rn, h) / rn if rn > 0.0 else 0.0
+    return w, dw
+
+
 @njit
 def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
     """Corrected kernel W~_b(x_a) (seed 004, eqs. 1-3) and its analytic gradient.
@@ -162,13 +175,8 @@ def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
         if not corrected:
             for k in range(k0, k1):
                 b = index[k]
-                rn2 = 0.0
-                for i in range(dim):
-                    r[i] = x[a, i] - x[b, i]
-                    rn2 += r[i] * r[i]
-                rn = np.sqrt(rn2)
-                wt[k] = kernel_w(kind, dim, rn, h)
-                dw = kernel_dwdr(kind, dim, rn, h) / rn if rn > 0.0 else 0.0
+                w, dw = _pair_kernel(x, a, b, dim, kind, h, r)
+                wt[k] = w
                 for i in range(dim):
                     gw[k, i] = dw * r[i]
             continue
@@ -183,14 +191,10 @@ def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
                     D2[i, j, l] = 0.0
         for k in range(k0, k1):
             b = index[k]
-            rn2 = 0.0
-            for i in range(dim):
-                r[i] = x[a, i] - x[b, i]
-                rn2 += r[i] * r[i]
-            rn = np.sqrt(rn2)
             Vb = vol[b]
-            w = Vb * kernel_w(kind, dim, rn, h)
-            dw = Vb * kernel_dwdr(kind, dim, rn, h) / rn if rn > 0.0 else 0.0
+            w, dw = _pair_kernel(x, a, b, dim, kind, h, r)
+            w *= Vb
+            dw *= Vb
             m0 += w
             for i in range(dim):
                 gW[i] = dw * r[i]
@@ -217,13 +221,7 @@ def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
             inv0 = 1.0 / m0
             for k in range(k0, k1):
                 b = index[k]
-                rn2 = 0.0
-                for i in range(dim):
-                    r[i] = x[a, i] - x[b, i]
-                    rn2 += r[i] * r[i]
-                rn = np.sqrt(rn2)
-                w = kernel_w(kind, dim, rn, h)
-                dw = kernel_dwdr(kind, dim, rn, h) / rn if rn > 0.0 else 0.0
+                w, dw = _pair_kernel(x, a, b, dim, kind, h, r)
                 wt[k] = w * inv0
                 for i in range(dim):
                     gw[k, i] = (dw * r[i] - w * g0[i] * inv0) * inv0
@@ -255,13 +253,7 @@ def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
             dalpha[j] = -alpha * alpha * dA
         for k in range(k0, k1):
             b = index[k]
-            rn2 = 0.0
-            for i in range(dim):
-                r[i] = x[a, i] - x[b, i]
-                rn2 += r[i] * r[i]
-            rn = np.sqrt(rn2)
-            w = kernel_w(kind, dim, rn, h)
-            dw = kernel_dwdr(kind, dim, rn, h) / rn if rn > 0.0 else 0.0
+            w, dw = _pair_kernel(x, a, b, dim, kind, h, r)
             c = 1.0
             for i in range(dim):
                 c += beta[i] * r[i]
