@@ -88,12 +88,13 @@ def cmd_check(args, dist):
     n = dist.sum(sim.particles.n_owned)
     nodes = sim.mpm.grid.n_nodes if sim.mpm else 0
     steps = int(round(case.time.end / sim.dt))
+    limit = sim.stable_dt()  # collective (global max of the signal speed): on every rank
     if dist.is_root:
         print(f"case       {case.name} ({case.dim}D)")
         print(f"particles  {n} in {len(case.bodies)} bodies")
         print(f"grid nodes {nodes} (with padding)" if nodes else "grid       none (no MPM)")
         print(f"dt         {sim.dt:.4g} ({'fixed' if case.time.dt else 'CFL'}; stable limit "
-              f"{sim.stable_dt():.4g}), about {steps} steps to t = {case.time.end:g}")
+              f"{limit:.4g}), about {steps} steps to t = {case.time.end:g}")
         print(f"memory     about {_memory_estimate(sim) / 2**20:.1f} MiB")
     return 0
 

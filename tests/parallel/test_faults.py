@@ -104,3 +104,12 @@ checkpoint_every = 10
     assert s_a == s_b == 40
     ia, ib = np.argsort(a["gid"]), np.argsort(b["gid"])
     assert np.abs(a["x"][ia] - b["x"][ib]).max() < 1e-10
+
+
+def test_check_command_on_two_ranks_does_not_hang(tmp_path):
+    """`check` computes the stable time step (a collective) on every rank, not on rank 0
+    only (it used to wait forever for the other rank)."""
+    for case in ("two_disks.toml", "sph_dam_break.toml"):
+        r, seconds = _mpirun(["check", os.path.join(ROOT, "cases", case)], {}, 120)
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.count("stable limit") == 1
