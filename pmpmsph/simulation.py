@@ -14,6 +14,7 @@ import numpy as np
 from .build import build_particles, material_arrays, sph_stage_class
 from .errors import ConfigError, RunError
 from .kernels.diagnostics import max_signal_speed, particle_sums
+from .materials.dispatch import material_tag
 from .parallel.decomposition import Decomposition
 from .parallel.distributor import Distributor
 from .parallel.balance import LoadBalancer
@@ -71,6 +72,10 @@ class Simulation:
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
         self._sums = np.zeros(7)
+        # the energy of one material type is called directly, not through the type switch;
+        # from the case's bodies (not this rank's particles, which migrate), as in MPMStage
+        used = sorted({list(case.materials).index(b.material) for b in case.bodies})
+        self._mtag = material_tag(self.materials[0][used])
         self._compile_kernels()
         if self.balancer is not None:  # seeding used equal slabs: balance before step 1
             with self.timers.phase("balance"):
@@ -145,7 +150,7 @@ class Simulation:
             mtypes, mparams = self.materials
             mstate = p["mstate"] if "mstate" in p else np.zeros((0, 0))
             particle_sums(self.dim, p["x"], p["v"], p["mass"], p["vol0"], p["F"], p["mat"],
-                          mtypes, mparams, mstate, self.gravity, self._sums)
+                          mtypes, mparams, mstate, self.gravity, self._sums, self._mtag)
             max_signal_speed(self.dim, p["v"], p["F"], p["mat"], mtypes, mparams)
             if self.decomposition is not None:
                 dec = self.decomposition
@@ -207,8 +212,12 @@ class Simulation:
         self.writer = SnapshotWriter(self.dist, h5, case_text=self.case.text,
                                      attrs={"case_name": self.case.name, "dim": self.dim,
                                             "code_version": code_version()},
-                                     overwrite=True)
+                                     overwrite=True, **self._snapshot_format())
         self.diag = DiagnosticsCSV(self.dist, csv, DIAG_COLUMNS, overwrite=True)
+
+    def _snapshot_format(self):
+        """Stored float type and packed tensors of this run's snapshots (io/snapshots.py)."""
+        return {"precision": self.case.output.precision, "symmetric": ("sigma",)}
 
     def snapshot_fields(self):
         p = self.particles
@@ -241,7 +250,7 @@ class Simulation:
         mstate = p["mstate"][:n] if "mstate" in p else np.zeros((n, 0))
         particle_sums(self.dim, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol0"][:n],
                       p["F"][:n], p["mat"][:n], mtypes, mparams, mstate, self.gravity,
-                      self._sums)
+                      self._sums, self._mtag)
         s = self.dist.sum(self._sums.copy())
         k, u, pot = s[0], s[1], s[2]
         return {"time": self.time, "step": self.step_count, "dt": self.dt, "kinetic": k,
@@ -362,7 +371,8 @@ class Simulation:
         from .io.checkpoint import STOP
 
         end = self.case.time.end
-        diag_every = self.case.output.diagnostics_every
+        n_global = int(self.dist.sum(self.particles.n_owned))
+        diag_every = self.case.output.diagnostics_interval(n_global)
         ck_every = self.case.output.checkpoint_every
         if self._last_snapshot_step != self.step_count:
             self.write_snapshot()
@@ -594,7 +604,8 @@ class Simulation:
         self.writer = SnapshotWriter(self.dist, h5, case_text=self.case.text,
                                      attrs={"case_name": self.case.name, "dim": self.dim,
                                             "code_version": code_version()},
-                                     append=True, after_step=self.step_count)
+                                     append=True, after_step=self.step_count,
+                                     **self._snapshot_format())
         if self.writer.appending:  # no second snapshot of the restart step
             self._last_snapshot_step = self.step_count
         self._agree("--out", lambda: truncate_rows(csv, "step", self.step_count),

@@ -3,20 +3,25 @@
 `python -m pmpmsph.bench io [--particles 1000000] [--steps 200] [--every 100] [--ranks 2]`
 starts one `mpirun -n RANKS python -m pmpmsph.bench io-worker` on the scaling scene (2D water
 column, quadratic B-splines, USL; see bench/scaling.py) and times blocks of `--every` steps
-in three configurations, interleaved (none, snapshots, diag/step, none, ...) so that a
-machine whose load changes during the bench affects all three alike:
+in four configurations, interleaved (none, default, double, diag/step, none, ...) so that a
+machine whose load changes during the bench affects all of them alike:
 
     none         no output at all
-    snapshots    the block ends with a snapshot (particles.h5 + XDMF sidecar) and a
-                 diagnostics row: one snapshot per `--every` steps
-    diag/step    the same plus a diagnostics row every step (the default diagnostics_every)
+    default      what a run does with `[output] every_steps = N` and nothing else set: a
+                 snapshot (particles.h5 + XDMF sidecar; default fields, float32, sigma as 6
+                 components) every N steps and a diagnostics row at the default interval
+                 for this particle count (OutputSpec.diagnostics_interval: every 100 steps
+                 above 100,000 particles, so one row per block of 100)
+    double       the same with `precision = "double"` snapshots
+    diag/step    the default plus a diagnostics row every step (`diagnostics_every = 1`)
 
 Each configuration runs `--steps` steps in all. Reported: the overhead (T - T_none) / T_none
 from the wall times (noisy on a shared machine), the `output` phase and the diagnostics time
-(slowest rank) and their sum over T_none ("direct" overhead, steadier), the bytes written and
-the write bandwidth = bytes / output-phase time, and one checkpoint (time, size, bandwidth). The page cache is flushed
-(os.sync, outside the timed blocks) before every block, so that the dirty pages of one write
-do not throttle the next. Writes bench_results/io.json.
+(slowest rank) and their sum over T_none ("direct" overhead, steadier), the bytes written
+(and per particle) and the write bandwidth = bytes / output-phase time, and one checkpoint
+(time, size, bandwidth). The page cache is flushed (os.sync, outside the timed blocks)
+before every block, so that the dirty pages of one write do not throttle the next. Writes
+bench_results/io.json.
 """
 import json
 import os
@@ -26,11 +31,13 @@ import time
 
 from .scaling import scaling_scene
 
-CONFIGS = ("none", "snapshots", "diag/step")
+CONFIGS = ("none", "default", "double", "diag/step")
 
 
 def worker(argv):
     import argparse
+
+    import numpy as np
 
     from ..parallel.distributor import Distributor
 
@@ -46,6 +53,8 @@ def worker(argv):
     scene.set("output.every_steps", a.every)
     sim = scene.simulation(dist=dist, out_dir=a.out_dir, overwrite=True)
     n_global = int(dist.sum(sim.particles.n_owned))
+    diag_every = sim.case.output.diagnostics_interval(n_global)
+    single = sim.writer.float_dtype
     h5 = os.path.join(a.out_dir, "particles.h5")
     sim.write_snapshot()  # step 0, outside the timing
     res = {c: {"wall": 0.0, "output_phase": 0.0, "diagnostics": 0.0, "snapshots": 0, "bytes": 0}
@@ -58,12 +67,14 @@ def worker(argv):
             size0 = os.path.getsize(h5) if dist.is_root else 0
             out0 = sim.timers.total.get("output", 0.0)
             diag = 0.0
+            # the stored float type is the writer's; "double" switches it for its blocks
+            sim.writer.float_dtype = np.float64 if config == "double" else single
+            every = 1 if config == "diag/step" else diag_every
             dist.barrier()
             t0 = time.perf_counter()
             for _ in range(a.every):  # what Simulation.run does per step for output
                 sim.step()
-                if config == "diag/step" or (config == "snapshots"
-                                             and sim.step_count % a.every == 0):
+                if config != "none" and sim.step_count % every == 0:
                     td = time.perf_counter()
                     sim.diag.append(sim.diagnostics())
                     diag += time.perf_counter() - td
@@ -88,6 +99,7 @@ def worker(argv):
     if dist.is_root:
         result = {"ranks": dist.size, "particles": n_global, "steps": blocks * a.every,
                   "every": a.every, "layout": layout, "configs": res,
+                  "diagnostics_every": diag_every, "fields": list(sim.case.output.fields),
                   "checkpoint_s": ck_time, "checkpoint_bytes": os.path.getsize(path)}
         with open(a.json, "w") as fh:
             json.dump(result, fh, indent=1)
@@ -109,17 +121,22 @@ def run(ranks=2, particles=1_000_000, steps=200, every=100, out="bench_results")
     none = res["none"]["wall"]
     summary = dict(raw)
     print(f"\noutput overhead: {raw['particles']} particles on {ranks} ranks, {raw['steps']} "
-          f"steps per configuration, a snapshot every {every} steps ({raw['layout']} layout)")
+          f"steps per configuration, a snapshot every {every} steps ({raw['layout']} layout), "
+          f"default diagnostics every {raw['diagnostics_every']} steps; fields "
+          f"{', '.join(raw['fields'])}")
     print(f"{'configuration':<14}{'wall s':>8}{'overhead':>10}{'output s':>10}{'diag s':>8}"
-          f"{'direct':>8}{'snapshots':>10}{'MiB':>8}{'MiB/s':>8}")
+          f"{'direct':>8}{'snapshots':>10}{'MiB':>8}{'MiB/s':>8}{'B/particle':>12}")
     for label in CONFIGS:
         r = res[label]
         r["overhead"] = (r["wall"] - none) / none
         r["bandwidth"] = r["bytes"] / r["output_phase"] if r["output_phase"] > 0 else 0.0
         r["direct"] = (r["output_phase"] + r["diagnostics"]) / none
+        r["bytes_per_particle"] = (r["bytes"] / r["snapshots"] / raw["particles"]
+                                   if r["snapshots"] else 0.0)
         print(f"{label:<14}{r['wall']:>8.2f}{100 * r['overhead']:>9.2f}%"
               f"{r['output_phase']:>10.2f}{r['diagnostics']:>8.2f}{100 * r['direct']:>7.2f}%"
-              f"{r['snapshots']:>10d}{r['bytes'] / 2**20:>8.0f}{r['bandwidth'] / 2**20:>8.0f}")
+              f"{r['snapshots']:>10d}{r['bytes'] / 2**20:>8.0f}{r['bandwidth'] / 2**20:>8.0f}"
+              f"{r['bytes_per_particle']:>12.1f}")
     ck_bw = raw["checkpoint_bytes"] / raw["checkpoint_s"] if raw["checkpoint_s"] > 0 else 0.0
     summary["checkpoint_bandwidth"] = ck_bw
     print(f"one checkpoint: {raw['checkpoint_s']:.2f} s, {raw['checkpoint_bytes'] / 2**20:.0f} "

@@ -142,14 +142,31 @@ class TimeSpec:
     cfl: Optional[float] = None
 
 
+#: default diagnostics schedule: every step up to this many particles, ...
+DIAG_AUTO_PARTICLES = 100_000
+#: ... and every this many steps above
+DIAG_AUTO_EVERY = 100
+
+
 @dataclass(frozen=True)
 class OutputSpec:
     every: Optional[float] = None       # snapshot interval in time
     every_steps: Optional[int] = None   # or in steps
-    diagnostics_every: int = 1          # steps between diagnostics rows
-    fields: tuple = ("gid", "body", "x", "v", "mass", "vol", "rho", "sigma", "F")
+    # steps between diagnostics rows; None: every step up to DIAG_AUTO_PARTICLES particles,
+    # else every DIAG_AUTO_EVERY steps (a row costs about a tenth of a step; see README)
+    diagnostics_every: Optional[int] = None
+    # what a viewer needs: ids, method/body, position, velocity, mass, density, stress
+    # (vol = mass/rho and F are left out for size: add them by name)
+    fields: tuple = ("gid", "method", "body", "x", "v", "mass", "rho", "sigma")
+    precision: str = "single"           # float fields of snapshots: "single" or "double"
     folder: str = "output"
     checkpoint_every: int = 0           # steps between checkpoints (0: only on signal/failure)
+
+    def diagnostics_interval(self, n_particles):
+        """Steps between diagnostics rows for a run of n_particles (global)."""
+        if self.diagnostics_every is not None:
+            return self.diagnostics_every
+        return 1 if n_particles <= DIAG_AUTO_PARTICLES else DIAG_AUTO_EVERY
 
 
 @dataclass(frozen=True)

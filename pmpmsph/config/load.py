@@ -481,8 +481,12 @@ def case_from_dict(data, name="case", text=""):
     if not isinstance(fields, list) or not all(isinstance(f, str) for f in fields):
         raise ConfigError(ot.key("fields"), "expected a list of field names")
     output = OutputSpec(every=every, every_steps=every_steps,
-                        diagnostics_every=ot.number("diagnostics_every", 1, integer=True, min=1),
-                        fields=tuple(fields), folder=_folder(ot, "folder", "output"),
+                        diagnostics_every=ot.number("diagnostics_every", None, integer=True,
+                                                    min=1),
+                        fields=tuple(fields),
+                        precision=ot.string("precision", "single",
+                                            choices=("single", "double")),
+                        folder=_folder(ot, "folder", "output"),
                         checkpoint_every=ot.number("checkpoint_every", 0, integer=True, min=0))
     ot.finish()
     pt = root.sub("parallel", {})

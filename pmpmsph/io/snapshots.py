@@ -14,10 +14,19 @@ Layout of ``RUN.h5`` (the same whichever way it was written)::
                                       written once per distinct particle count N and shared
                                       by every snapshot with that count
 
-Tensors such as ``sigma`` and ``F`` keep their natural shape (n_total, 3, 3), row-major, so
-``F[i]`` reads back as the 3x3 matrix of particle i (the XDMF sidecar declares them as
-``Tensor`` with dimensions ``N 3 3``, which ParaView/VTK read as 9-component arrays).
-Boolean fields are stored as uint8.
+Tensors such as ``F`` keep their natural shape (n_total, 3, 3), row-major, so ``F[i]`` is
+the 3x3 matrix of particle i (the XDMF sidecar declares them as ``Tensor`` with dimensions
+``N 3 3``, which ParaView/VTK read as 9-component arrays). Fields named in ``symmetric``
+(the Cauchy stress ``sigma`` of a run) are stored as their 6 independent components
+(n_total, 6) in the XDMF ``Tensor6`` order xx, xy, xz, yy, yz, zz, with the dataset attribute
+``symmetric`` naming that order: ParaView/VTK expand them to the full 9-component tensor and
+:func:`read_snapshot` to (n, 3, 3). Boolean fields are stored as uint8.
+
+``precision``: ``"single"`` stores every float field as float32 (half the bytes: what a
+viewer needs, and the disk is the cost of a snapshot), ``"double"`` as float64, None (the
+default of this class) as given. Ids and integer fields keep their dtype. A run takes
+``[output] precision`` (default single); checkpoints (io/checkpoint.py) are always the full
+float64 state, for an exact restart.
 
 Three ways of writing, chosen automatically (``mode="auto"``):
 
@@ -55,6 +64,10 @@ FORMAT = "pmpmsph-snapshots-1"
 GROUP = "snapshots"
 TOPOLOGY = "xdmf/polyvertex"
 MODES = ("auto", "serial", "mpio", "per-rank")
+PRECISIONS = {"single": np.float32, "double": np.float64}
+#: components of a symmetric tensor as stored (the XDMF Tensor6 order), as (row, column)
+SYM_ORDER = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+SYM_ATTR = "xx xy xz yy yz zz"
 # Dense attribute storage (the 1.8 file format) so large attributes (a long case text, the
 # counts of many ranks) do not hit the 64 KiB object-header limit.
 LIBVER = ("v108", "latest")
@@ -106,8 +119,9 @@ def open_h5(path, mode, **kw):
         return h5py.File(path, mode, **kw)
 
 
-def _storage_array(name, arr):
-    """The array as it is stored: numpy, bool -> uint8, object/str dtypes refused."""
+def _storage_array(name, arr, float_dtype=None, symmetric=False):
+    """The array as it is stored: numpy, bool -> uint8, object/str dtypes refused; floats in
+    `float_dtype` (None: as given); a symmetric (n, 3, 3) field as its (n, 6) components."""
     arr = np.asarray(arr)
     if arr.ndim == 0:
         raise ValueError(f"snapshot field '{name}' must have a particle axis, got a scalar")
@@ -115,7 +129,26 @@ def _storage_array(name, arr):
         arr = arr.astype(np.uint8)
     if arr.dtype.kind not in "iuf":
         raise ValueError(f"snapshot field '{name}' has unsupported dtype {arr.dtype}")
-    return arr
+    dtype = float_dtype if float_dtype is not None and arr.dtype.kind == "f" else arr.dtype
+    if symmetric:
+        if arr.shape[1:] != (3, 3):
+            raise ValueError(f"symmetric snapshot field '{name}' must have shape (n, 3, 3), "
+                             f"got {arr.shape}")
+        packed = np.empty((arr.shape[0], 6), dtype=dtype)
+        for k, (i, j) in enumerate(SYM_ORDER):  # the upper triangle; sigma is symmetric
+            packed[:, k] = arr[:, i, j]
+        return packed
+    return arr.astype(dtype, copy=False)
+
+
+def unpack_symmetric(arr):
+    """(n, 6) components in the stored order -> (n, 3, 3) symmetric tensors (same dtype)."""
+    arr = np.asarray(arr)
+    full = np.empty((arr.shape[0], 3, 3), dtype=arr.dtype)
+    for k, (i, j) in enumerate(SYM_ORDER):
+        full[:, i, j] = arr[:, k]
+        full[:, j, i] = arr[:, k]
+    return full
 
 
 class SnapshotWriter:
@@ -124,12 +157,19 @@ class SnapshotWriter:
     ``fields`` given to :meth:`write` map a name to an array whose first axis is this rank's
     owned particle count; all ranks must pass the same names, dtypes and trailing shapes in
     the same order (checked). ``x`` (n, 3) is required when the XDMF sidecar is written.
+    ``precision`` ("single", "double" or None: as given) sets the stored float type and
+    ``symmetric`` names the (n, 3, 3) fields stored as 6 components (see the module doc).
     """
 
     def __init__(self, dist, path, *, case_text="", attrs=None, overwrite=False, mode="auto",
-                 xdmf=True, append=False, after_step=None):
+                 xdmf=True, append=False, after_step=None, precision=None, symmetric=()):
         if mode not in MODES:
             raise ValueError(f"unknown snapshot mode {mode!r}, expected one of {MODES}")
+        if precision is not None and precision not in PRECISIONS:
+            raise ValueError(f"unknown snapshot precision {precision!r}, expected one of "
+                             f"{tuple(PRECISIONS)} or None")
+        self.float_dtype = PRECISIONS.get(precision)
+        self.symmetric = frozenset(symmetric)
         self.dist = dist
         self.path = os.path.abspath(os.fspath(dist.bcast(os.fspath(path))))
         self.xdmf = xdmf
@@ -271,7 +311,7 @@ class SnapshotWriter:
             for name, value in fields.items():
                 if "/" in name or not name:
                     raise ValueError(f"invalid snapshot field name {name!r}")
-                arr = _storage_array(name, value)
+                arr = _storage_array(name, value, self.float_dtype, name in self.symmetric)
                 if n is None:
                     n = arr.shape[0]
                 elif arr.shape[0] != n:
@@ -332,6 +372,7 @@ class SnapshotWriter:
                 grp.attrs[key] = value
             for key, arr in arrays.items():
                 dset = grp.create_dataset(key, shape=(n_total,) + arr.shape[1:], dtype=arr.dtype)
+                self._mark(dset, key)
                 if n_total > 0:  # a dataset of size 0 has no storage to write to (all agree)
                     _write_slice(dset, offset, arr, collective=True)
             key = str(n_total)
@@ -349,10 +390,16 @@ class SnapshotWriter:
             for key, value in meta.items():
                 grp.attrs[key] = value
             for key, arr in arrays.items():
-                grp.create_dataset(key, data=np.ascontiguousarray(arr))
+                self._mark(grp.create_dataset(key, data=np.ascontiguousarray(arr)), key)
             if path == self.path:  # the main file of a one-rank run (not a per-rank part)
                 self._write_topology(f, meta["n_total"])
             f.flush()
+
+    def _mark(self, dset, key):
+        """Name the stored component order of a symmetric tensor (collective in mpio mode:
+        every rank marks the same datasets)."""
+        if key in self.symmetric:
+            dset.attrs["symmetric"] = SYM_ATTR
 
     def _write_topology(self, f, n_total):
         """Serial writer of the shared Polyvertex connectivity (rank 0 / one rank)."""
@@ -377,7 +424,7 @@ class SnapshotWriter:
                         os.path.basename(rank_file(self.path, r)), f"/{GROUP}/{name}/{key}",
                         shape=(int(c),) + trailing, dtype=arr.dtype)
                     layout[int(starts[r]):int(starts[r + 1])] = src
-                grp.create_virtual_dataset(key, layout, fillvalue=0)
+                self._mark(grp.create_virtual_dataset(key, layout, fillvalue=0), key)
             self._write_topology(f, meta["n_total"])
             f.flush()
 
@@ -447,11 +494,13 @@ def list_snapshots(path):
     return out
 
 
-def read_snapshot(path, index=-1, fields=None):
+def read_snapshot(path, index=-1, fields=None, packed=False):
     """Read one snapshot: returns (time, step, {field: array}) with fields in written order.
 
     ``index`` counts snapshots like a Python list (-1 is the last). ``fields`` restricts the
-    names read. Works for every layout (virtual datasets are resolved by HDF5).
+    names read. Works for every layout (virtual datasets are resolved by HDF5). Symmetric
+    tensors come back as (n, 3, 3), or as stored, (n, 6), with ``packed=True``. Arrays keep
+    their stored dtype (float32 for a single-precision run).
     """
     infos = list_snapshots(path)
     if not infos:
@@ -465,8 +514,17 @@ def read_snapshot(path, index=-1, fields=None):
             if missing:
                 raise KeyError(f"snapshot {info.name} of {path} has no field(s) {missing}")
             names = list(fields)
-        data = {k: grp[k][()] for k in names}
+        data = {}
+        for k in names:
+            dset = grp[k]
+            data[k] = dset[()]
+            if not packed and _attr_str(dset.attrs.get("symmetric")) == SYM_ATTR:
+                data[k] = unpack_symmetric(data[k])
     return info.time, info.step, data
+
+
+def _attr_str(value):
+    return value.decode() if isinstance(value, bytes) else value
 
 
 def read_attrs(path):

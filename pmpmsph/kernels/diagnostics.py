@@ -2,16 +2,58 @@
 
 Kinetic energy K = sum 1/2 m v.v and strain energy U = sum psi(F) vol0 (thesis eq. 88 in its
 hyperelastic form), gravitational potential P = -sum m g.x, momentum and mass.
+
+The strain energy is the dear part of a diagnostics row (a log and an exp per particle for a
+Tait fluid). When every particle shares one material type, `particle_sums` takes that type as
+a compile-time tag (`material_tag`, as the MPM stress update does) and calls the model's
+energy directly: the runtime switch over all six models, inlined in the particle loop, cost
+more than the energy itself. The sums are the same, in the same order, bit for bit.
 """
 import numpy as np
+from numba.extending import overload
 
 from ..jit import njit
 from ..materials.dispatch import strain_energy, wave_speed
+from ..materials.elastic import (energy_hartmann_neff, energy_linear_elastic,
+                                 energy_neo_hookean, energy_stvk)
+from ..materials.fluid import energy_tait_fluid
+from ..materials.maxwell import energy_maxwell
+from ..materials.codes import (HARTMANN_NEFF, LINEAR_ELASTIC, MAXWELL, NEO_HOOKEAN, STVK,
+                               TAIT_FLUID)
+
+_ENERGY_BY_CODE = {NEO_HOOKEAN: energy_neo_hookean, TAIT_FLUID: energy_tait_fluid,
+                   LINEAR_ELASTIC: energy_linear_elastic, STVK: energy_stvk,
+                   HARTMANN_NEFF: energy_hartmann_neff, MAXWELL: energy_maxwell}
+
+
+def strain_energy_tagged(mtag, mtype, F, state, par):
+    """`strain_energy` with the type fixed at compile time when `mtag` is not empty (see
+    `materials.dispatch.compute_stress_tagged`). This body runs under NUMBA_DISABLE_JIT=1."""
+    if len(mtag) == 0:
+        return strain_energy(mtype, F, state, par)
+    return _ENERGY_BY_CODE[len(mtag) - 1](F, state, par)
+
+
+@overload(strain_energy_tagged, inline="always")
+def _strain_energy_tagged_typed(mtag, mtype, F, state, par):
+    count = len(mtag.types)
+    if count == 0:
+        def switch(mtag, mtype, F, state, par):
+            return strain_energy(mtype, F, state, par)
+        return switch
+    model = _ENERGY_BY_CODE[count - 1]
+
+    def fixed(mtag, mtype, F, state, par):
+        return model(F, state, par)
+    return fixed
 
 
 @njit
-def particle_sums(dim, x, v, mass, vol0, F, mat, mtypes, mparams, mstate, gravity, out):
-    """out[:] = (K, U, P, px, py, pz, mass): this rank's owned-particle sums."""
+def particle_sums(dim, x, v, mass, vol0, F, mat, mtypes, mparams, mstate, gravity, out,
+                  mtag=()):
+    """out[:] = (K, U, P, px, py, pz, mass): this rank's owned-particle sums.
+
+    `mtag`: `material_tag` of the materials present (() for a mix: runtime switch)."""
     for k in range(out.shape[0]):
         out[k] = 0.0
     for p in range(x.shape[0]):
@@ -24,7 +66,8 @@ def particle_sums(dim, x, v, mass, vol0, F, mat, mtypes, mparams, mstate, gravit
             out[3 + a] += m * v[p, a]
         out[0] += 0.5 * m * v2
         mi = mat[p]
-        out[1] += strain_energy(mtypes[mi], F[p], mstate[p], mparams[mi]) * vol0[p]
+        out[1] += (strain_energy_tagged(mtag, mtypes[mi], F[p], mstate[p], mparams[mi])
+                   * vol0[p])
         out[2] -= m * gx
         out[6] += m
 

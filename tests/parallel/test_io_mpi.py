@@ -254,3 +254,37 @@ def test_fallback_without_parallel_h5py(dist, shared_dir, monkeypatch, caplog):
         t, step, data = read_snapshot(path)
         assert (t, step) == (1.5, 3)
         np.testing.assert_array_equal(data["F"], expected(dist.size, 2)["F"])
+
+
+@pytest.mark.parametrize("mode", ["auto", "per-rank"])
+def test_single_precision_symmetric_sigma_on_n_ranks(dist, shared_dir, mode):
+    """float32 snapshots with sigma as 6 components, written collectively (and per rank),
+    with empty ranks: rank 0 reads back the concatenated doubles rounded to float32."""
+    def fields(rank, snap):
+        f = local_fields(rank, dist.size, snap)
+        f["sigma"] = 0.5 * (f["sigma"] + f["sigma"].transpose(0, 2, 1))
+        return f
+
+    path = os.path.join(shared_dir, f"single_{mode}.h5")
+    with SnapshotWriter(dist, path, mode=mode, precision="single", symmetric=("sigma",)) as w:
+        for snap in range(3):
+            w.write(snap, 0.5 * snap, fields(dist.rank, snap))
+    dist.barrier()
+    if dist.is_root:
+        import h5py
+
+        for snap in range(3):
+            parts = [fields(r, snap) for r in range(dist.size)]
+            ref = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+            _, _, data = read_snapshot(path, snap)
+            assert list(data) == list(ref)
+            for k, want in ref.items():
+                if want.dtype.kind == "f":
+                    assert data[k].dtype == np.float32, k
+                    want = want.astype(np.float32)
+                np.testing.assert_array_equal(data[k], want, err_msg=k)
+        with h5py.File(path, "r") as f:
+            dset = f["snapshots/000002/sigma"]
+            assert dset.shape == (len(ref["gid"]), 6) and dset.dtype == np.float32
+            assert dset.attrs["symmetric"] == "xx xy xz yy yz zz"
+        check_xdmf(path, [i for i in list_snapshots(path) if i.n_total > 0])

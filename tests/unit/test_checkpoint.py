@@ -34,6 +34,9 @@ dt = 1e-3
 [output]
 every_steps = 20
 checkpoint_every = 15
+# the restart is compared with an uninterrupted run to 1e-10 through the snapshots
+precision = "double"
+fields = ["gid", "x", "v", "F", "sigma"]
 """
 
 BULLET = """

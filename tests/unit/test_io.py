@@ -6,6 +6,7 @@ import h5py
 import numpy as np
 import pytest
 
+from pmpmsph import ConfigError, load_case_text
 from pmpmsph.io import (DiagnosticsCSV, SnapshotWriter, list_snapshots, read_attrs,
                         read_diagnostics, read_snapshot, rebuild_xdmf_main, write_xdmf)
 from pmpmsph.io.snapshots import rank_file
@@ -306,3 +307,180 @@ def test_diagnostics_roundtrip(dist, tmp_path):
     with open(path, "a") as fh:
         fh.write("2.5\n3.0,")
     assert read_diagnostics(path)["time"].tolist() == [1.5, 2.5]
+
+
+# -- single precision and packed symmetric tensors ---------------------------------------------
+def symmetric_fields(snap):
+    """make_fields with a symmetric sigma (a stress is; the writer keeps its upper triangle)."""
+    f = make_fields(snap)
+    f["sigma"] = 0.5 * (f["sigma"] + f["sigma"].transpose(0, 2, 1))
+    return f
+
+
+@pytest.mark.parametrize("mode", ["serial", "per-rank"])
+def test_single_precision_and_symmetric_sigma(dist, tmp_path, mode):
+    path = str(tmp_path / "run.h5")
+    with SnapshotWriter(dist, path, mode=mode, precision="single", symmetric=("sigma",)) as w:
+        for snap in range(3):
+            w.write(STEPS[snap], TIMES[snap], symmetric_fields(snap))
+    ref = symmetric_fields(2)
+    n = COUNTS[2]
+    _, _, data = read_snapshot(path, 2)
+    for k, want in ref.items():
+        if want.dtype.kind == "f":  # every float field: float32, the double rounded once
+            assert data[k].dtype == np.float32, k
+            np.testing.assert_array_equal(data[k], want.astype(np.float32), err_msg=k)
+        else:  # ids and flags keep their type, exactly
+            np.testing.assert_array_equal(data[k], want.astype(data[k].dtype), err_msg=k)
+            assert data[k].dtype == (np.uint8 if want.dtype == np.bool_ else want.dtype), k
+    assert data["sigma"].shape == (n, 3, 3)
+    # float32 is within half an ulp of the double: relative 2**-24
+    assert np.max(np.abs(data["x"] - ref["x"]) / np.abs(ref["x"])) <= 2.0**-24
+    # stored: 6 components xx, xy, xz, yy, yz, zz with the order as an attribute
+    _, _, packed = read_snapshot(path, 2, fields=["sigma"], packed=True)
+    s = ref["sigma"].astype(np.float32)
+    np.testing.assert_array_equal(
+        packed["sigma"], np.stack([s[:, 0, 0], s[:, 0, 1], s[:, 0, 2], s[:, 1, 1], s[:, 1, 2],
+                                   s[:, 2, 2]], axis=1))
+    with h5py.File(path, "r") as f:
+        dset = f["snapshots/000002/sigma"]
+        assert dset.shape == (n, 6) and dset.dtype == np.float32
+        assert dset.attrs["symmetric"] == "xx xy xz yy yz zz"
+        assert "symmetric" not in f["snapshots/000002/F"].attrs
+        assert f["snapshots/000002/F"].shape == (n, 3, 3)
+    # the sidecar declares it as a Tensor6 of 4-byte floats
+    attrs = {a.get("Name"): a for a in ET.parse(str(tmp_path / "run.xdmf")).getroot()
+             .findall("Domain/Grid/Grid")[2].findall("Attribute")}
+    item = attrs["sigma"].find("DataItem")
+    assert attrs["sigma"].get("AttributeType") == "Tensor6"
+    assert (item.get("Dimensions"), item.get("NumberType"), item.get("Precision")) == \
+        (f"{n} 6", "Float", "4")
+    # ... which VTK expands to the full symmetric tensor
+    name, _, grid = vtk_read_last(str(tmp_path / "run.xdmf"))
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    got = vtk_to_numpy(grid.GetPointData().GetArray("sigma"))
+    assert got.shape == (n, 9) and got.dtype == np.float32, name
+    np.testing.assert_array_equal(got, s.reshape(n, 9))
+    np.testing.assert_array_equal(vtk_to_numpy(grid.GetPoints().GetData()),
+                                  ref["x"].astype(np.float32))
+
+
+def test_precision_and_symmetric_are_checked(dist, tmp_path):
+    with pytest.raises(ValueError, match="precision"):
+        SnapshotWriter(dist, str(tmp_path / "a.h5"), precision="half")
+    w = SnapshotWriter(dist, str(tmp_path / "b.h5"), symmetric=("sigma",), xdmf=False)
+    with pytest.raises(ValueError, match="shape"):
+        w.write(0, 0.0, {"sigma": np.zeros((4, 6))})
+    w.write(0, 0.0, {"sigma": np.zeros((4, 3, 3))})
+    with pytest.raises(ConfigError) as err:
+        load_case_text(SCENE_CASE + 'precision = "float"\n')
+    assert err.value.key == "output.precision"
+
+
+SCENE_CASE = """
+dimension = 2
+[grid]
+length = [1.0, 1.0]
+cells = [10, 10]
+[materials.m]
+model = "neo_hookean"
+E = 1000.0
+nu = 0.3
+rho = 1000.0
+[[bodies]]
+name = "block"
+material = "m"
+shape = "box"
+min = [0.3, 0.3]
+max = [0.6, 0.6]
+ppc = 2
+velocity = [0.05, 0.02]
+[time]
+end = 0.02
+dt = 1e-3
+[output]
+every_steps = 10
+"""
+
+
+def test_run_snapshot_is_float32_of_the_state_and_checkpoint_is_exact(dist, tmp_path):
+    """A run's default snapshot holds the double state rounded to float32 (sigma from its
+    6 stored components); the checkpoint of the same step is the float64 state bit for bit."""
+    from pmpmsph.io.checkpoint import read_checkpoint
+    from pmpmsph.simulation import Simulation
+
+    case = load_case_text(SCENE_CASE)
+    assert case.output.precision == "single"
+    assert case.output.fields == ("gid", "method", "body", "x", "v", "mass", "rho", "sigma")
+    sim = Simulation(case, dist=dist, out_dir=str(tmp_path / "run"))
+    sim.run()
+    ck = sim.write_checkpoint()
+    sim.close()
+    p, n = sim.particles, sim.particles.n_owned
+    _, step, snap = read_snapshot(str(tmp_path / "run" / "particles.h5"), -1)
+    assert step == sim.step_count == 20 and list(snap) == list(case.output.fields)
+    assert np.abs(p["sigma"][:n]).max() > 0  # a deformed body: a real comparison
+    state = {"gid": p["gid"][:n], "method": p["method"][:n], "body": p["body"][:n],
+             "x": np.pad(p["x"][:n], ((0, 0), (0, 1))), "v": np.pad(p["v"][:n], ((0, 0), (0, 1))),
+             "mass": p["mass"][:n], "rho": p["mass"][:n] / p["vol"][:n],
+             "sigma": p["sigma"][:n]}
+    for k, want in state.items():
+        if want.dtype.kind == "f":
+            assert snap[k].dtype == np.float32, k
+            np.testing.assert_array_equal(snap[k], want.astype(np.float32), err_msg=k)
+        else:
+            assert snap[k].dtype == want.dtype, k
+            np.testing.assert_array_equal(snap[k], want, err_msg=k)
+    _, rows = read_checkpoint(ck)
+    for k in ("x", "v", "F", "sigma", "mass", "vol"):
+        assert rows[k].dtype == np.float64, k
+        np.testing.assert_array_equal(rows[k], p[k][:n], err_msg=k)
+    # precision = "double" and extra fields by name
+    case = load_case_text(SCENE_CASE + 'precision = "double"\nfields = ["gid", "x", "F"]\n')
+    sim = Simulation(case, dist=dist, out_dir=str(tmp_path / "double"))
+    sim.run(max_steps=3)
+    sim.close()
+    _, _, snap = read_snapshot(str(tmp_path / "double" / "particles.h5"), -1)
+    assert list(snap) == ["gid", "x", "F"] and snap["F"].dtype == np.float64
+    np.testing.assert_array_equal(snap["F"], sim.particles["F"][: sim.particles.n_owned])
+
+
+def test_default_diagnostics_interval():
+    """Every step up to 100,000 particles, every 100 steps above; a given value wins."""
+    from pmpmsph.config.case import OutputSpec
+
+    o = load_case_text(SCENE_CASE).output
+    assert o.diagnostics_every is None
+    assert [o.diagnostics_interval(n) for n in (1, 100_000, 100_001, 10**7)] == [1, 1, 100, 100]
+    o = load_case_text(SCENE_CASE + "diagnostics_every = 7\n").output
+    assert o.diagnostics_interval(10**7) == o.diagnostics_interval(1) == 7
+    assert OutputSpec().diagnostics_interval(2_000_000) == 100
+
+
+def test_particle_sums_tagged_equals_the_switch():
+    """The one-material (tagged) strain energy gives the runtime switch's sums bit for bit."""
+    from pmpmsph.build import material_arrays
+    from pmpmsph.kernels.diagnostics import particle_sums
+    from pmpmsph.materials.dispatch import material_tag
+
+    rng = np.random.default_rng(5)
+    n = 200
+    x, v = rng.random((n, 2)), rng.standard_normal((n, 2))
+    mass, vol0 = rng.random(n) + 0.5, rng.random(n) + 0.5
+    F = np.eye(3) + 0.05 * rng.standard_normal((n, 3, 3))
+    F[:, 2, :2] = F[:, :2, 2] = 0.0
+    g = np.array([0.0, -9.81, 0.0])
+    for model in ("neo_hookean", "tait", "linear_elastic"):
+        extra = 'gamma = 7.0\nkappa = 1e5\n' if model == "tait" else "E = 1e4\nnu = 0.3\n"
+        case = load_case_text(SCENE_CASE.replace(
+            'model = "neo_hookean"\nE = 1000.0\nnu = 0.3\n', f'model = "{model}"\n{extra}'))
+        mtypes, mparams = material_arrays(case)
+        mat = np.zeros(n, dtype=np.int32)
+        a, b = np.zeros(7), np.zeros(7)
+        particle_sums(2, x, v, mass, vol0, F, mat, mtypes, mparams, np.zeros((n, 0)), g, a)
+        tag = material_tag(mtypes)
+        assert len(tag) == int(mtypes[0]) + 1
+        particle_sums(2, x, v, mass, vol0, F, mat, mtypes, mparams, np.zeros((n, 0)), g, b,
+                      tag)
+        assert a[1] != 0.0 and a.tolist() == b.tolist(), model

@@ -47,7 +47,11 @@ def test_vtu_export_reads_back(run_dir):
         assert len(mesh.points) == info.n_total == 48
         np.testing.assert_array_equal(mesh.points, data["x"])
         assert mesh.cells[0].type == "vertex" and len(mesh.cells[0].data) == 48
-        np.testing.assert_array_equal(mesh.point_data["F"], data["F"].reshape(-1, 9))
+        # sigma is stored as 6 float32 components; the VTU has the full row-major tensor
+        sigma = mesh.point_data["sigma"]
+        assert sigma.shape == (48, 9) and sigma.dtype == np.float32
+        np.testing.assert_array_equal(sigma, data["sigma"].reshape(-1, 9))
+        np.testing.assert_array_equal(sigma[:, [1, 2, 5]], sigma[:, [3, 6, 7]])
         np.testing.assert_array_equal(mesh.point_data["gid"], data["gid"])
     pvd = ET.parse(os.path.join(folder, "particles.pvd")).getroot()
     assert [float(d.get("timestep")) for d in pvd.iter("DataSet")] == [i.time for i in infos]
