@@ -1,4 +1,5 @@
-"""`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--no-peers] [--install-peers]`.
+"""`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--no-peers] [--install-peers]`;
+`... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`.
 
 Prints particle-steps per second for our solver and for the peers of ../shared/peers run in
 the same invocation (machines are shared and noisy: ratios taken together hold, absolute
@@ -39,6 +40,14 @@ def main(argv=None):
     io.add_argument("--steps", type=int, default=200)
     io.add_argument("--every", type=int, default=100, help="snapshot every N steps")
     io.add_argument("--out", default="bench_results")
+    ac = sub.add_parser("accuracy", help="error against cost for every method (accuracy.py)")
+    ac.add_argument("--quick", action="store_true", help="coarse levels only (CI smoke)")
+    ac.add_argument("--scenes", nargs="+", help="study keys (default: all), e.g. spring")
+    ac.add_argument("--out", default=os.path.join("bench_results", "accuracy"))
+    ac.add_argument("--readme", action="store_true",
+                    help="copy the figures to docs/accuracy/ and rewrite the README section")
+    ac.add_argument("--report-only", action="store_true",
+                    help="rebuild plots and summary from the CSVs in --out")
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "io-worker":
         from .io import worker
@@ -49,6 +58,11 @@ def main(argv=None):
 
         return worker(argv[1:])
     args = ap.parse_args(argv)
+    if args.command == "accuracy":
+        from ..parallel.distributor import Distributor
+        from .accuracy import run
+
+        return run(args, Distributor())
     if args.command == "io":
         from .io import run
 

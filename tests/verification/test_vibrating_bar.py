@@ -18,16 +18,13 @@ nearly massless node; USL inverts it at h = 1/2, MUSL gives 6.4e-3, 8.0e-2, 1.5e
 and the B-splines converge at first order only (the fixed node does not pin a B-spline
 field: quadratic 6.7e-2 -> 7.8e-3, cubic 9.6e-2 -> 1.1e-2 from h = 1 to 1/8 over one period).
 """
-from pathlib import Path
-
 import numpy as np
 import pytest
 
-from pmpmsph import load_case_file
+from pmpmsph.bench.scenes import BAR_E as E, BAR_L as L, BAR_RHO as RHO, BAR_V0 as V0
+from pmpmsph.bench.scenes import mode_velocity, vibrating_bar_case
 from pmpmsph.simulation import Simulation
 
-CASE = Path(__file__).resolve().parents[2] / "cases" / "vibrating_bar_1d.toml"
-L, E, RHO, V0 = 25.0, 100.0, 1.0, 0.1
 BETA = np.pi / (2 * L)
 OMEGA = BETA * np.sqrt(E / RHO)
 AMPLITUDE = V0 * (1 - np.cos(BETA * L)) / (BETA * L)  # = 2 v0 / pi
@@ -35,13 +32,8 @@ T_END = 20.0
 
 
 def max_cm_velocity_error(refine, shape="gimp"):
-    h = 1.0 / refine
-    case = load_case_file(CASE, overrides=[("mpm.shape", shape), ("grid.cell_size", h),
-                                           ("grid.cells", [27 * refine]),
-                                           ("time.dt", 0.01 * h), ("time.end", T_END)])
-    sim = Simulation(case)
-    x = sim.particles["x"][:, 0]
-    sim.particles["v"][:, 0] = V0 * np.sin(BETA * x)
+    sim = Simulation(vibrating_bar_case(refine, shape, end=T_END))
+    mode_velocity(sim)
     total = sim.particles["mass"].sum()
     worst = [0.0]
 

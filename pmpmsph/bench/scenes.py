@@ -1,0 +1,177 @@
+"""Benchmark scenes as Python `Scene`s, each with its resolution knob (BENCHMARKS.md).
+
+Shared by the accuracy bench (`bench/accuracy.py`) and the tests (tests/parallel/scenes.py
+re-exports them), so a scene is defined once. The defaults are the set-ups the tests pin.
+"""
+from pmpmsph import Scene
+
+COPPER = dict(model="linear_elastic", E=128e9, nu=0.3, rho=8790.0)
+
+
+def two_disks(contact="single", shape="linear", spacing=0.02, cells=20, transfer="usl",
+              dt=1e-3):
+    """BENCHMARKS.md scene 3 (thesis §8.3): two neo-Hookean disks on a 1 x 1 grid."""
+    sc = Scene(2, grid=dict(origin=[0, 0], length=[1, 1], cells=[cells, cells]),
+               time=dict(end=3.0, dt=dt),
+               mpm=dict(shape=shape, contact=contact, transfer=transfer))
+    sc.material("m", model="neo_hookean", E=1000.0, nu=0.3, rho=1000.0)
+    sc.body(name="a", material="m", shape="disc", centre=[0.2, 0.2], radius=0.2,
+            spacing=spacing, velocity=[0.1, 0.1])
+    sc.body(name="b", material="m", shape="disc", centre=[0.8, 0.8], radius=0.2,
+            spacing=spacing, velocity=[-0.1, -0.1])
+    return sc
+
+
+def sph_bar_1d(integrator="rk3", spacing=0.05):
+    """BENCHMARKS.md scene 8 in pure SPH (seed 000 §5.1): copper bar on [0, 1], h = 1.3
+    spacing, v(x, 0) = 0.01 c sin(10 pi x) set by the caller, Courant number 0.1."""
+    sc = Scene(1, domain=dict(min=[-0.5], max=[1.5]), time=dict(end=1.0, cfl=0.1),
+               sph=dict(h_factor=1.3, integrator=integrator,
+                        viscosity=dict(alpha=0.0, beta=0.0)),
+               parallel=dict(balance_every=0))
+    sc.material("copper", **COPPER)
+    sc.body(name="bar", method="sph", material="copper", shape="box", min=[0.0], max=[1.0],
+            spacing=spacing)
+    return sc
+
+
+def sph_dam_break(dx=0.05, integrator="predictor_corrector", walls="slip", balance_every=0,
+                  axis="y", end=1.0, wall_height=2.5):
+    """The SPH dam break of cases/sph_dam_break.toml: 1 x 2 water column in a 4 wide tank,
+    dummy-particle walls (4 layers; `wall_height` high: the water stays below it in the
+    first 0.5 s), Tait water, alpha = 0.1. Slabs along y by default, so the falling column
+    crosses the slab faces at once."""
+    m = max(0.3, 5 * dx)  # the domain holds the 4 wall layers
+    sc = Scene(2, domain=dict(min=[-m, -m], max=[4 + m, wall_height + 0.1]),
+               gravity=[0, -9.81], time=dict(end=end, cfl=0.125),
+               sph=dict(kernel="wendland", h_factor=1.3, integrator=integrator, walls=walls,
+                        viscosity=dict(alpha=0.1, beta=0.0)),
+               parallel=dict(axis=axis, balance_every=balance_every))
+    sc.material("water", model="tait", rho=1000.0, kappa=560571.4, gamma=7.0, mu=0.0)
+    sc.body(name="water", method="sph", material="water", shape="box", min=[0, 0],
+            max=[1, 2], spacing=dx)
+    w = 4 * dx
+    for name, lo, hi in (("floor", [0, -w], [4, 0]), ("left", [-w, -w], [0, wall_height]),
+                         ("right", [4, -w], [4 + w, wall_height])):
+        sc.body(name=name, method="sph", wall=True, material="water", shape="box", min=lo,
+                max=hi, spacing=dx)
+    return sc
+
+
+def tl_plate(n=21, corrected=True, eta=None, integrator="rk3", force="current",
+             deformation="reference", k_h=1.4, cfl=0.3, end=1.2, formulation="total"):
+    """BENCHMARKS.md scene 12 (seed 004 §6.1): 1 x 1 mm plane-strain plate, Hartmann-Neff
+    neo-Hookean mu = 1.25 MPa, k = 5.833 MPa, rho = 3, free surface, total-Lagrangian SPH
+    with n x n particles (h = k_h x spacing). The caller sets v1 = 0.8 x2 (`shear_velocity`).
+    With `eta`: the Maxwell body of scene 13. `formulation="updated"`: the same plate in
+    updated-Lagrangian SPH (no correction, artificial stress off, no viscosity)."""
+    sph = dict(formulation=formulation, h_factor=k_h, integrator=integrator)
+    if formulation == "total":
+        sph.update(correction=corrected, force=force, deformation=deformation)
+    else:
+        sph.update(viscosity=dict(alpha=0.0, beta=0.0))
+    sc = Scene(2, domain=dict(min=[-1.0, -1.0], max=[3.0, 2.0]),
+               time=dict(end=end, cfl=cfl), sph=sph,
+               parallel=dict(axis="x", balance_every=0))
+    if eta is None:
+        sc.material("rubber", model="hartmann_neff", mu=1.25, k=5.833, rho=3.0)
+    else:
+        sc.material("rubber", model="maxwell", mu=1.25, k=5.833, rho=3.0, eta=eta)
+    sc.body(name="plate", method="sph", material="rubber", shape="box", min=[0.0, 0.0],
+            max=[1.0, 1.0], count=[n, n])
+    return sc
+
+
+def shear_velocity(sim, rate=0.8):
+    """Initial simple-shear velocity v1 = rate x2, v2 = 0 (seed 004, eq. 19)."""
+    p = sim.particles
+    p["v"][:, 0] = rate * p["x"][:, 1]
+    p["v"][:, 1] = 0.0
+
+
+def coupled_bar_1d(mode="coupled", shape="gimp", integrator="verlet", spacing=0.05,
+                   transfer="usl", h=None):
+    """Seed 000 §5 copper bar (cell = 2 spacings, default spacing 0.05) as `mode`:
+    "coupled" (MPM in the outer fifths [0, 0.2] and [0.8, 1], SPH inside, h = cell size
+    unless given), "mpm" or "sph"."""
+    cell = 2.0 * spacing
+    sc = Scene(1, grid=dict(origin=[-0.3], cell_size=cell, cells=[int(round(1.6 / cell))]),
+               time=dict(end=1.0, cfl=0.1),
+               mpm=dict(shape=shape, transfer=transfer),
+               parallel=dict(balance_every=0))
+    if mode != "mpm":
+        sc.data["sph"] = dict(h=cell if h is None else h, integrator=integrator,
+                              viscosity=dict(alpha=0.0, beta=0.0))
+    sc.material("copper", **COPPER)
+    sc.body(name="bar", method="sph" if mode == "sph" else "mpm", material="copper",
+            shape="box", min=[0.0], max=[1.0], spacing=spacing)
+    if mode == "coupled":
+        sc.data["regions"] = [dict(method="sph", shape="box", min=[0.2], max=[0.8])]
+    return sc
+
+
+def stress_bar(mode="coupled", h=0.1, transfer="musl", alpha=0.0, shape="gimp",
+               spacing=0.05):
+    """Seed 000 §5.2 (BENCHMARKS.md scene 9): the copper bar compressed by 1 MPa ramped over
+    2 ms on its end particle layers, damped to rest; "coupled": MPM in [0, 0.2] and
+    [0.8, 1], SPH inside; "mpm": all MPM. Cell = 2 spacings."""
+    cell = 2.0 * spacing
+    sc = Scene(1, grid=dict(origin=[-0.2], cell_size=cell, cells=[int(round(1.4 / cell))]),
+               time=dict(end=0.02, cfl=0.1),
+               mpm=dict(shape=shape, damping=2000.0, transfer=transfer),
+               parallel=dict(balance_every=0))
+    sc.material("copper", **COPPER)
+    sc.body(name="bar", material="copper", shape="box", min=[0.0], max=[1.0], spacing=spacing)
+    if mode == "coupled":
+        sc.data["sph"] = dict(h=h, integrator="verlet", damping=2000.0,
+                              viscosity=dict(alpha=alpha, beta=alpha))
+        sc.data["regions"] = [dict(method="sph", shape="box", min=[0.2], max=[0.8])]
+    for lo, hi, face in ((0.0, spacing, "x-"), (1.0 - spacing, 1.0, "x+")):
+        sc.load(body="bar", box=dict(min=[lo], max=[hi]), normal=face, stress=[-1e6],
+                ramp=0.002)
+    return sc
+
+
+def coupled_stress_bar(h=0.1, transfer="musl", alpha=0.0):
+    """The coupled scene-9 bar at the seed's resolution (see `stress_bar`)."""
+    return stress_bar("coupled", h=h, transfer=transfer, alpha=alpha)
+
+
+def _case_file(name, overrides):
+    """A case of the repository's cases/ folder with `--set`-style overrides."""
+    from pathlib import Path
+
+    from pmpmsph import load_case_file
+
+    path = Path(__file__).resolve().parents[2] / "cases" / name
+    return load_case_file(path, overrides=overrides)
+
+
+def spring_case(refine=1, shape="gimp", transfer="usl"):
+    """Scene 1 (cases/spring_1d.toml) refined k times: 10 k particles, 21 k cells, dt / k."""
+    return _case_file("spring_1d.toml", [("mpm.shape", shape), ("mpm.transfer", transfer),
+                                         ("bodies[0].count", [10 * refine]),
+                                         ("grid.cells", [21 * refine]),
+                                         ("time.dt", 1e-4 / refine)])
+
+
+# scene 14: bar length, modulus, density, velocity amplitude (cases/vibrating_bar_1d.toml)
+BAR_L, BAR_E, BAR_RHO, BAR_V0 = 25.0, 100.0, 1.0, 0.1
+
+
+def vibrating_bar_case(refine=1, shape="gimp", transfer="usl", end=20.0):
+    """Scene 14 (cases/vibrating_bar_1d.toml) with cell h = 1/k, 2 particles per cell,
+    dt = 0.01 h (Courant number 0.1). The caller sets the mode with `mode_velocity`."""
+    h = 1.0 / refine
+    return _case_file("vibrating_bar_1d.toml",
+                      [("mpm.shape", shape), ("mpm.transfer", transfer),
+                       ("grid.cell_size", h), ("grid.cells", [27 * refine]),
+                       ("time.dt", 0.01 * h), ("time.end", end)])
+
+
+def mode_velocity(sim):
+    """First axial mode of the fixed-free bar, v = v0 sin(beta x), beta = pi / (2 L)."""
+    import numpy as np
+
+    x = sim.particles["x"][:, 0]
+    sim.particles["v"][:, 0] = BAR_V0 * np.sin(np.pi / (2 * BAR_L) * x)
