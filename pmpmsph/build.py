@@ -184,8 +184,12 @@ def build_particles(case, keep=None):
             vals["prestress"] = vals["sigma"]
         if "lp" in ps:
             vals["lp"] = np.tile(0.5 * spacing / np.array(case.grid.cell_size), (n, 1))
-            if np.any(vals["lp"] > 0.5 + 1e-12):
-                raise ConfigError(f"{key}.spacing", "GIMP needs particle spacing <= cell size")
+            # GIMP's 3-node stencil covers half-widths up to 1/2 cell; a CPDI domain grows
+            # with the stretch up to `mpm.cpdi_reach` cells, so start it at no more than one
+            gimp = case.mpm.shape == "gimp"
+            if np.any(vals["lp"] > (0.5 if gimp else 1.0) + 1e-12):
+                raise ConfigError(f"{key}.spacing", "GIMP needs particle spacing <= cell size"
+                                  if gimp else "CPDI needs particle spacing <= 2 cell sizes")
         if state_size:
             st = np.zeros((n, state_size))
             st[:, : mat.state_size] = mat.initial_state()

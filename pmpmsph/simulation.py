@@ -357,6 +357,8 @@ class Simulation:
                 cause = "NaN in position or deformation gradient"
             elif not J > 0:
                 cause = f"det F = {J:.3g} <= 0 (inverted material)"
+            elif self.mpm is not None and self.mpm.domain_failure(bad):
+                cause = self.mpm.domain_failure(bad)
             else:
                 where = "grid" if self.case.grid else "domain"
                 cause = f"left the {where} at x = {np.round(x, 6).tolist()}"
@@ -381,7 +383,6 @@ class Simulation:
             self.diag.append(self.diagnostics())
         t_start = time.perf_counter()
         steps0 = self.step_count
-        n_global = int(self.dist.sum(self.particles.n_owned))
         t0_sim = self.time
         try:
             while self.time < end - 1e-6 * self.dt:

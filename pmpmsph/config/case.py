@@ -6,7 +6,7 @@ Python `Scene` API. Nothing here knows about MPI or numba.
 from dataclasses import dataclass, field
 from typing import Optional
 
-SHAPES = ("linear", "gimp", "quadratic", "cubic")
+SHAPES = ("linear", "gimp", "quadratic", "cubic", "cpdi")
 TRANSFERS = ("usl", "usf", "musl")
 CONTACTS = ("single", "multi")
 METHODS = ("mpm", "sph")
@@ -21,6 +21,11 @@ class GridSpec:
     origin: tuple
     cell_size: tuple
     cells: tuple
+    #: node layers stored outside the domain, and ghost node layers on each side of a slab:
+    #: 2 and 3 cover every fixed stencil (kernels/shapes.py, parallel/decomposition.py);
+    #: CPDI domains reaching R cells need R + 1 and R + 2 (set from `mpm.cpdi_reach`)
+    pad: int = 2
+    ghost: int = 3
 
     @property
     def dim(self):
@@ -40,6 +45,7 @@ class MPMSpec:
     mass_cutoff: float = 1e-10  # nodes lighter than this get no velocity (thesis listing 2)
     contact: str = "single"    # single velocity field, or one per body (Bardenhagen)
     friction: float = 0.0      # Coulomb coefficient of multi-field contact
+    cpdi_reach: int = 2        # CPDI: the largest domain half-extent (cells) the grid covers
 
 
 @dataclass(frozen=True)

@@ -5,6 +5,7 @@ and exit status 2 on every rank.
 """
 import contextvars
 import copy
+import dataclasses
 import math
 import tomllib
 
@@ -401,8 +402,15 @@ def case_from_dict(data, name="case", text=""):
         mass_cutoff=mpm_t.number("mass_cutoff", 1e-10, min=0.0),
         contact=mpm_t.string("contact", "single", choices=CONTACTS),
         friction=mpm_t.number("friction", 0.0, min=0.0),
+        cpdi_reach=mpm_t.number("cpdi_reach", 2, integer=True, min=1, max=8),
     )
+    if mpm_t.has("cpdi_reach") and mpm.shape != "cpdi":
+        raise ConfigError(mpm_t.key("cpdi_reach"), "applies to shape = \"cpdi\" only")
     mpm_t.finish()
+    if grid is not None and mpm.shape == "cpdi":
+        # room for domain corners up to cpdi_reach cells from a particle that may sit one cell
+        # outside the domain (pad) or have moved a cell since the last migration (ghosts)
+        grid = dataclasses.replace(grid, pad=mpm.cpdi_reach + 1, ghost=mpm.cpdi_reach + 2)
 
     mats_t = root.sub("materials")
     materials = {}
@@ -446,9 +454,6 @@ def case_from_dict(data, name="case", text=""):
                           "(min, max) that the particles stay in")
     else:
         domain = None
-    if mpm.shape == "gimp" and any(b.ppc == 1 for b in bodies):
-        pass  # lp = 1/2 is the largest GIMP support this stencil covers; ppc >= 1 is fine
-
     boundaries = tuple(_boundary(bt, dim) for bt in root.subs("boundaries"))
     for b in boundaries:
         if grid is None:

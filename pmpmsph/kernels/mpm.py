@@ -9,34 +9,40 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.dispatch import compute_stress_tagged
-from .shapes import particle_stencil
+from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 
 @njit
-def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv_dx, strides,
-        gmass, gmom, gforce, gmgrad, gmx):
+def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, offset,
+        inv_dx, strides, gmass, gmom, gforce, gmgrad, gmx):
     """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65).
 
     Internal force of node I: -sum_p vol_p sigma_p . grad N_I(x_p); external: sum_p N_I f_p.
     Gravity is added on the grid (m_I g is exactly sum_p N_I m_p g).
     Optional inputs are None when a scene lacks them, which Numba resolves at compile time:
-    `fext` (particle forces), `lp` (GIMP half-widths; None for other shapes), `pfield` (the
+    `fext` (particle forces), `lp` (GIMP/CPDI half-widths; None for other shapes), `F` (the
+    deformation gradient that shapes a CPDI domain; None for other shapes), `pfield` (the
     velocity field of each particle for multi-field contact; None: field 0), `gmgrad` (mass
     gradients sum_p m_p grad N_I for contact normals), `gmx` (mass-weighted positions
     sum_p N_I m_p x_p, for the contact gap). `dim_tag`/`kind_tag` are the
-    compile-time dimension and shape function (`static_tags`).
+    compile-time dimension and shape function (`static_tags`); `origin` is the position of
+    global node 0 (`Grid.node0`) and `offset` the global index of local node 0 per axis.
     """
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
     st[:dim] = strides
+    off = np.zeros(3, np.int64)
+    off[:dim] = offset
+    nax = node_counts(dim, strides, gmass.shape[1])
+    dom = np.zeros((2, 3, 3))
     n = x.shape[0]
     fe0 = fe1 = fe2 = 0.0
     fld = 0
     for p in range(n):
         if pfield is not None:
             fld = pfield[p]
-        base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = particle_stencil(
-            kind_tag, dim, x, lp, p, origin, inv_dx, st)
+        if F is not None:
+            cpdi_domain(dim, F, lp, p, dom)
         m = mass[p]
         vo = vol[p] * inv_dx  # grad N = dw * inv_dx, folded in here
         mv0 = m * v[p, 0]
@@ -54,37 +60,40 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, pfield, origin, inv
                 fe1 = fext[p, 1]
             if dim > 2:
                 fe2 = fext[p, 2]
-        for i in range(n0):
-            for j in range(n1):
-                wij = w0[i] * w1[j]
-                for k in range(n2):
-                    N = wij * w2[k]
-                    node = base + i * st[0] + j * st[1] + k * st[2]
-                    gmass[fld, node] += N * m
-                    gmom[fld, node, 0] += N * mv0
-                    if dim > 1:
-                        gmom[fld, node, 1] += N * mv1
-                    if dim > 2:
-                        gmom[fld, node, 2] += N * mv2
-                    if gforce is not None or gmgrad is not None:
-                        g0 = d0[i] * w1[j] * w2[k]
-                        g1 = w0[i] * d1[j] * w2[k]
-                        g2 = wij * d2[k]
-                    if gforce is not None:
-                        gforce[fld, node, 0] += N * fe0 - (s00 * g0 + s01 * g1 + s02 * g2)
+        for c in range(n_corners(kind_tag, dim)):
+            base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
+                kind_tag, dim, x, lp, F, dom, p, c, origin, inv_dx, st, off, nax)
+            for i in range(n0):
+                for j in range(n1):
+                    wij = w0[i] * w1[j]
+                    for k in range(n2):
+                        N = wij * w2[k]
+                        node = base + i * st[0] + j * st[1] + k * st[2]
+                        gmass[fld, node] += N * m
+                        gmom[fld, node, 0] += N * mv0
                         if dim > 1:
-                            gforce[fld, node, 1] += N * fe1 - (s01 * g0 + s11 * g1 + s12 * g2)
+                            gmom[fld, node, 1] += N * mv1
                         if dim > 2:
-                            gforce[fld, node, 2] += N * fe2 - (s02 * g0 + s12 * g1 + s22 * g2)
-                    if gmgrad is not None:
-                        gmgrad[fld, node, 0] += m * g0 * inv_dx
-                        if dim > 1:
-                            gmgrad[fld, node, 1] += m * g1 * inv_dx
-                        if dim > 2:
-                            gmgrad[fld, node, 2] += m * g2 * inv_dx
-                    if gmx is not None:
-                        for a in range(dim):
-                            gmx[fld, node, a] += N * m * x[p, a]
+                            gmom[fld, node, 2] += N * mv2
+                        if gforce is not None or gmgrad is not None:
+                            g0 = d0[i] * w1[j] * w2[k]
+                            g1 = w0[i] * d1[j] * w2[k]
+                            g2 = wij * d2[k]
+                        if gforce is not None:
+                            gforce[fld, node, 0] += N * fe0 - (s00 * g0 + s01 * g1 + s02 * g2)
+                            if dim > 1:
+                                gforce[fld, node, 1] += N * fe1 - (s01 * g0 + s11 * g1 + s12 * g2)
+                            if dim > 2:
+                                gforce[fld, node, 2] += N * fe2 - (s02 * g0 + s12 * g1 + s22 * g2)
+                        if gmgrad is not None:
+                            gmgrad[fld, node, 0] += m * g0 * inv_dx
+                            if dim > 1:
+                                gmgrad[fld, node, 1] += m * g1 * inv_dx
+                            if dim > 2:
+                                gmgrad[fld, node, 2] += m * g2 * inv_dx
+                        if gmx is not None:
+                            for a in range(dim):
+                                gmx[fld, node, a] += N * m * x[p, a]
 
 
 @njit
@@ -194,9 +203,9 @@ def mirror_grid_bc(dim, outside, inside, kind, normal, gvel, gdv):
 
 
 @njit
-def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, mtypes, mparams,
-        mstate,
-        prestress, gvel, gdv, origin, inv_dx, strides, dt, flip, lo, hi):
+def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield, mat, mtypes,
+        mparams, mstate, prestress, gvel, gdv, origin, offset, inv_dx, strides, dt, flip, lo,
+        hi, max_reach):
     """Gather from the grid (eqs. 80-86) for every particle.
 
     Kinematics: v_p <- flip (v_p + sum N dv) + (1 - flip) sum N v_new (FLIP/PIC blend),
@@ -205,12 +214,21 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, 
     L is evaluated at the position before this step's move. Returns the index of the first
     particle that left the box [lo, hi], became NaN or inverted (det F <= 0), or -1.
     Passing `gdv = None` skips the kinematics, `F = None` the deformation (USF/MUSL passes);
-    `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`); `mat_tag` fixes
-    the material type at compile time when all particles share it (`material_tag`).
+    `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`); `Fdom` is the
+    deformation gradient shaping CPDI domains (the same array as `F` when that is updated
+    here: each particle's domain is read before its F changes), None for other shapes; a
+    CPDI domain that grows beyond `max_reach` cells is reported like an inversion.
+    `origin` and `offset` place the local grid as in `p2g`.
+    `mat_tag` fixes the material type at compile time when all particles share it
+    (`material_tag`).
     """
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
     st[:dim] = strides
+    off = np.zeros(3, np.int64)
+    off[:dim] = offset
+    nax = node_counts(dim, strides, gvel.shape[1])
+    dom = np.zeros((2, 3, 3))
     L = np.zeros((3, 3))
     Fn = np.zeros((3, 3))
     sig = np.zeros((3, 3))
@@ -220,44 +238,47 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, 
     for p in range(n):
         if pfield is not None:
             fld = pfield[p]
-        base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = particle_stencil(
-            kind_tag, dim, x, lp, p, origin, inv_dx, st)
+        if Fdom is not None:
+            cpdi_domain(dim, Fdom, lp, p, dom)
         vp0 = vp1 = vp2 = 0.0  # sum N v_new
         dv0 = dv1 = dv2 = 0.0  # sum N dv
         L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
-        for i in range(n0):
-            for j in range(n1):
-                wij = w0[i] * w1[j]
-                for k in range(n2):
-                    N = wij * w2[k]
-                    node = base + i * st[0] + j * st[1] + k * st[2]
-                    u0 = gvel[fld, node, 0]
-                    u1 = gvel[fld, node, 1] if dim > 1 else 0.0
-                    u2 = gvel[fld, node, 2] if dim > 2 else 0.0
-                    if gdv is not None:
-                        vp0 += N * u0
-                        dv0 += N * gdv[fld, node, 0]
-                        if dim > 1:
-                            vp1 += N * u1
-                            dv1 += N * gdv[fld, node, 1]
-                        if dim > 2:
-                            vp2 += N * u2
-                            dv2 += N * gdv[fld, node, 2]
-                    if F is not None:
-                        g0 = d0[i] * w1[j] * w2[k]
-                        L00 += u0 * g0
-                        if dim > 1:
-                            g1 = w0[i] * d1[j] * w2[k]
-                            L01 += u0 * g1
-                            L10 += u1 * g0
-                            L11 += u1 * g1
-                        if dim > 2:
-                            g2 = wij * d2[k]
-                            L02 += u0 * g2
-                            L12 += u1 * g2
-                            L20 += u2 * g0
-                            L21 += u2 * g1
-                            L22 += u2 * g2
+        for c in range(n_corners(kind_tag, dim)):
+            base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
+                kind_tag, dim, x, lp, Fdom, dom, p, c, origin, inv_dx, st, off, nax)
+            for i in range(n0):
+                for j in range(n1):
+                    wij = w0[i] * w1[j]
+                    for k in range(n2):
+                        N = wij * w2[k]
+                        node = base + i * st[0] + j * st[1] + k * st[2]
+                        u0 = gvel[fld, node, 0]
+                        u1 = gvel[fld, node, 1] if dim > 1 else 0.0
+                        u2 = gvel[fld, node, 2] if dim > 2 else 0.0
+                        if gdv is not None:
+                            vp0 += N * u0
+                            dv0 += N * gdv[fld, node, 0]
+                            if dim > 1:
+                                vp1 += N * u1
+                                dv1 += N * gdv[fld, node, 1]
+                            if dim > 2:
+                                vp2 += N * u2
+                                dv2 += N * gdv[fld, node, 2]
+                        if F is not None:
+                            g0 = d0[i] * w1[j] * w2[k]
+                            L00 += u0 * g0
+                            if dim > 1:
+                                g1 = w0[i] * d1[j] * w2[k]
+                                L01 += u0 * g1
+                                L10 += u1 * g0
+                                L11 += u1 * g1
+                            if dim > 2:
+                                g2 = wij * d2[k]
+                                L02 += u0 * g2
+                                L12 += u1 * g2
+                                L20 += u2 * g0
+                                L21 += u2 * g1
+                                L22 += u2 * g2
         if gdv is not None:
             v[p, 0] = flip * (v[p, 0] + dv0) + (1.0 - flip) * vp0
             x[p, 0] += dt * vp0
@@ -317,6 +338,8 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, pfield, mat, 
                  + Fn[0, 2] * (Fn[1, 0] * Fn[2, 1] - Fn[1, 1] * Fn[2, 0]))
             vol[p] = J * vol0[p]
             if not (J > 0.0) and bad < 0:
+                bad = p
+            if Fdom is not None and bad < 0 and cpdi_reach(dim, Fn, lp, p) > max_reach:
                 bad = p
             mi = mat[p]
             compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi], sig)

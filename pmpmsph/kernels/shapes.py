@@ -6,24 +6,32 @@ Kinds (integer codes, so one compiled kernel serves all of them):
             particle half-width `lp` in cell units (3 nodes per axis for lp <= 1/2)
   QUADRATIC quadratic B-spline (3 nodes per axis)
   CUBIC     cubic B-spline (4 nodes per axis)
-All coordinates here are in cell units: X = (x - origin)/dx + pad, so node i sits at X = i.
+  CPDI      convected particle domain interpolation, CPDI1 (Sadeghirad, Brannon & Burghardt
+            2011): the particle's domain is the parallelogram (parallelepiped) of half-edges
+            r_a = F lp_a e_a, and its weight and gradient are averages of linear hats over
+            that domain, evaluated from its 2^dim corners (`corner_stencil`)
+All coordinates here are in cell units: X = (x - origin)/dx with `origin` the position of
+global (padded) node 0 (`Grid.node0`), so global node i sits at X = i; a rank's local node
+index is the global one minus its grid's `offset`. Weights come from the global X, so they
+are the same bits on every rank whatever the slab.
 """
 import math
 
+import numpy as np
 from numba.extending import overload
 
 from ..jit import njit
 
-LINEAR, GIMP, QUADRATIC, CUBIC = 0, 1, 2, 3
-SHAPE_CODES = {"linear": LINEAR, "gimp": GIMP, "quadratic": QUADRATIC, "cubic": CUBIC}
-#: nodes per axis touched by one particle, and grid padding (nodes outside the domain) needed
-STENCIL_WIDTH = {LINEAR: 2, GIMP: 3, QUADRATIC: 3, CUBIC: 4}
-GRID_PAD = 2
+LINEAR, GIMP, QUADRATIC, CUBIC, CPDI = 0, 1, 2, 3, 4
+SHAPE_CODES = {"linear": LINEAR, "gimp": GIMP, "quadratic": QUADRATIC, "cubic": CUBIC,
+               "cpdi": CPDI}
+#: nodes per axis touched by one stencil (for CPDI: by each of the 2^dim corners)
+STENCIL_WIDTH = {LINEAR: 2, GIMP: 3, QUADRATIC: 3, CUBIC: 4, CPDI: 2}
 
 
 @njit(inline="always")
 def stencil_width(kind):
-    if kind == LINEAR:
+    if kind == LINEAR or kind == CPDI:
         return 2
     if kind == CUBIC:
         return 4
@@ -99,7 +107,7 @@ def weights_gimp(X, lp):
 
 
 _WEIGHTS = {LINEAR: weights_linear, GIMP: weights_gimp, QUADRATIC: weights_quadratic,
-            CUBIC: weights_cubic}
+            CUBIC: weights_cubic, CPDI: weights_linear}
 
 
 @njit
@@ -139,16 +147,17 @@ def axis_weights(kind_tag, dim, a, xp, origin, inv_dx, lp):
     loop serve 1D, 2D and 3D.
     """
     if a < dim:
-        X = (xp[a] - origin[a]) * inv_dx + 2.0  # + GRID_PAD
+        X = (xp[a] - origin[a]) * inv_dx
         base, w, dw = weights_tagged(kind_tag, X, lp)
         return base, stencil_width(len(kind_tag) - 1), w, dw
     return 0, 1, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0)
 
 
 @njit(inline="always")
-def particle_stencil(kind_tag, dim, x, lp, p, origin, inv_dx, st):
-    """Stencil of particle p: (base node, nodes per axis n0-n2, weights w0-w2, derivatives
-    d0-d2), the prologue P2G and G2P share. `lp` (GIMP half-widths) may be None."""
+def particle_stencil(kind_tag, dim, x, lp, p, origin, inv_dx, st, off):
+    """Stencil of particle p: (local base node, nodes per axis n0-n2, weights w0-w2,
+    derivatives d0-d2), the prologue P2G and G2P share. `lp` (GIMP half-widths) may be None;
+    `off` is the global index of local node 0 per axis."""
     lp0 = lp1 = lp2 = 0.5
     if lp is not None:
         lp0 = lp[p, 0]
@@ -157,8 +166,137 @@ def particle_stencil(kind_tag, dim, x, lp, p, origin, inv_dx, st):
     b0, n0, w0, d0 = axis_weights(kind_tag, dim, 0, x[p], origin, inv_dx, lp0)
     b1, n1, w1, d1 = axis_weights(kind_tag, dim, 1, x[p], origin, inv_dx, lp1)
     b2, n2, w2, d2 = axis_weights(kind_tag, dim, 2, x[p], origin, inv_dx, lp2)
-    base = b0 * st[0] + b1 * st[1] + b2 * st[2]
+    base = (b0 - off[0]) * st[0] + (b1 - off[1]) * st[1] + (b2 - off[2]) * st[2]
     return base, n0, n1, n2, w0, w1, w2, d0, d1, d2
+
+
+def n_corners(kind_tag, dim):
+    """Stencils per particle: 2^dim domain corners for CPDI, else one (compile-time)."""
+    return 2 ** dim if len(kind_tag) - 1 == CPDI else 1
+
+
+@overload(n_corners, inline="always")
+def _n_corners_typed(kind_tag, dim):
+    if len(kind_tag.types) - 1 == CPDI:
+        return lambda kind_tag, dim: 1 << dim
+    return lambda kind_tag, dim: 1
+
+
+@njit(inline="always")
+def cpdi_domain(dim, F, lp, p, dom):
+    """The CPDI1 domain of particle p in cell units: dom[0] = R = F diag(lp), whose columns
+    are the half-edges r_a, and dom[1] = G = F^-T diag(1/lp) (in-plane block of F).
+
+    With x = x_p + sum_a xi_a r_a, xi in [-1, 1]^dim, the domain average of the gradient of
+    the multilinear interpolant of a nodal shape function S_I through the corner values is
+    2^-dim G sum_c s_c S_I(x_c) (s_c the corner's signs), because the integral of the
+    gradient of the corner's multilinear function over the reference cube is s_c and the
+    map has the constant Jacobian R; its domain average is 2^-dim sum_c S_I(x_c). Both
+    sum to a partition of unity (the gradients to zero). Sadeghirad et al. 2011, eqs. 29-30.
+    """
+    if dim == 1:
+        dom[0, 0, 0] = F[p, 0, 0] * lp[p, 0]
+        dom[1, 0, 0] = 1.0 / (F[p, 0, 0] * lp[p, 0])
+        return
+    if dim == 2:
+        a, b, c, d = F[p, 0, 0], F[p, 0, 1], F[p, 1, 0], F[p, 1, 1]
+        inv_det = 1.0 / (a * d - b * c)
+        # F^-T = [[d, -c], [-b, a]] / det
+        dom[1, 0, 0] = d * inv_det / lp[p, 0]
+        dom[1, 0, 1] = -c * inv_det / lp[p, 1]
+        dom[1, 1, 0] = -b * inv_det / lp[p, 0]
+        dom[1, 1, 1] = a * inv_det / lp[p, 1]
+    else:
+        f = F[p]
+        c00 = f[1, 1] * f[2, 2] - f[1, 2] * f[2, 1]  # cofactors: F^-T = cof(F) / det F
+        c01 = f[1, 2] * f[2, 0] - f[1, 0] * f[2, 2]
+        c02 = f[1, 0] * f[2, 1] - f[1, 1] * f[2, 0]
+        c10 = f[0, 2] * f[2, 1] - f[0, 1] * f[2, 2]
+        c11 = f[0, 0] * f[2, 2] - f[0, 2] * f[2, 0]
+        c12 = f[0, 1] * f[2, 0] - f[0, 0] * f[2, 1]
+        c20 = f[0, 1] * f[1, 2] - f[0, 2] * f[1, 1]
+        c21 = f[0, 2] * f[1, 0] - f[0, 0] * f[1, 2]
+        c22 = f[0, 0] * f[1, 1] - f[0, 1] * f[1, 0]
+        inv_det = 1.0 / (f[0, 0] * c00 + f[0, 1] * c01 + f[0, 2] * c02)
+        dom[1, 0, 0] = c00 * inv_det / lp[p, 0]
+        dom[1, 0, 1] = c01 * inv_det / lp[p, 1]
+        dom[1, 0, 2] = c02 * inv_det / lp[p, 2]
+        dom[1, 1, 0] = c10 * inv_det / lp[p, 0]
+        dom[1, 1, 1] = c11 * inv_det / lp[p, 1]
+        dom[1, 1, 2] = c12 * inv_det / lp[p, 2]
+        dom[1, 2, 0] = c20 * inv_det / lp[p, 0]
+        dom[1, 2, 1] = c21 * inv_det / lp[p, 1]
+        dom[1, 2, 2] = c22 * inv_det / lp[p, 2]
+    for a in range(dim):
+        for b in range(dim):
+            dom[0, a, b] = F[p, a, b] * lp[p, b]
+
+
+@njit(inline="always")
+def cpdi_reach(dim, F, lp, p):
+    """Largest half-extent (cells) along an axis of the CPDI domain F diag(lp) of particle p:
+    max_a sum_b |F_ab| lp_b (F a 3x3 array)."""
+    reach = 0.0
+    for a in range(dim):
+        r = 0.0
+        for b in range(dim):
+            r += abs(F[a, b]) * lp[p, b]
+        reach = max(reach, r)
+    return reach
+
+
+@njit(inline="always")
+def _corner_axis(dim, a, c, xp, origin, inv_dx, dom, off, nax):
+    """(base, count, w, dw) along axis `a` for corner c of a CPDI domain: linear hats at the
+    corner, dw = w times the corner's gradient factor (G s_c)_a. The corner is clamped into
+    the stored nodes so a domain grown past the grid's reach (`mpm.cpdi_reach`) in one step
+    cannot write outside the arrays (G2P reports such a particle)."""
+    if a >= dim:
+        return 0, 1, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0)
+    X = (xp[a] - origin[a]) * inv_dx
+    gc = 0.0
+    for b in range(dim):
+        s = 1.0 if (c >> b) & 1 else -1.0
+        X += s * dom[0, a, b]
+        gc += s * dom[1, a, b]
+    X = min(max(X, float(off[a])), off[a] + nax[a] - 1.000001)
+    base = math.floor(X)
+    f = X - base
+    scale = 1.0 / (1 << dim) if a == 0 else 1.0  # the corner average's 2^-dim, on one axis
+    w0 = (1.0 - f) * scale
+    w1 = f * scale
+    return base, 2, (w0, w1, 0.0, 0.0), (w0 * gc, w1 * gc, 0.0, 0.0)
+
+
+@njit(inline="always")
+def corner_stencil(dim, x, dom, p, c, origin, inv_dx, st, off, nax):
+    """Stencil of corner c of particle p's CPDI domain, in the form of `particle_stencil`:
+    the products of w give 2^-dim S_I(x_c) and those with one dw the matching term of the
+    gradient, so P2G and G2P sum corner stencils exactly as they sum one particle stencil."""
+    b0, n0, w0, d0 = _corner_axis(dim, 0, c, x[p], origin, inv_dx, dom, off, nax)
+    b1, n1, w1, d1 = _corner_axis(dim, 1, c, x[p], origin, inv_dx, dom, off, nax)
+    b2, n2, w2, d2 = _corner_axis(dim, 2, c, x[p], origin, inv_dx, dom, off, nax)
+    base = (b0 - off[0]) * st[0] + (b1 - off[1]) * st[1] + (b2 - off[2]) * st[2]
+    return base, n0, n1, n2, w0, w1, w2, d0, d1, d2
+
+
+@njit(inline="always")
+def stencil(kind_tag, dim, x, lp, F, dom, p, c, origin, inv_dx, st, off, nax):
+    """Stencil c of particle p: a CPDI corner (`dom` filled by `cpdi_domain` from F) or,
+    for the other shape functions, the particle's own stencil (c = 0)."""
+    if F is not None and len(kind_tag) - 1 == CPDI:
+        return corner_stencil(dim, x, dom, p, c, origin, inv_dx, st, off, nax)
+    return particle_stencil(kind_tag, dim, x, lp, p, origin, inv_dx, st, off)
+
+
+@njit(inline="always")
+def node_counts(dim, strides, n_nodes):
+    """Nodes per axis of the local grid (3 entries, 1 beyond dim) from its C-order strides."""
+    nax = np.ones(3, np.int64)
+    nax[0] = n_nodes // strides[0]
+    for a in range(1, dim):
+        nax[a] = strides[a - 1] // strides[a]
+    return nax
 
 
 def static_tags(dim, kind):

@@ -11,7 +11,6 @@ computes the same faces from the same global histogram.
 """
 import numpy as np
 
-from .decomposition import MIN_SLAB
 
 NODE_COST = 0.1
 
@@ -32,7 +31,7 @@ def imbalance(faces, work):
     return w.max() / max(w.mean(), 1e-300) - 1.0
 
 
-def balanced_faces(work, size, min_width=MIN_SLAB):
+def balanced_faces(work, size, min_width):
     """Faces at the quantiles of cumulative work, each slab at least `min_width` cells."""
     n = len(work)
     cum = np.concatenate([[0.0], np.cumsum(work)])
@@ -59,7 +58,7 @@ class LoadBalancer:
         before = imbalance(dec.faces, work)
         if before <= self.threshold:
             return None, before, before
-        faces = balanced_faces(work, dec.size)
+        faces = balanced_faces(work, dec.size, dec.min_slab)
         after = imbalance(faces, work)
         if np.array_equal(faces, dec.faces) or after > 0.5 * before:
             return None, before, before

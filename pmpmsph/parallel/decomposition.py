@@ -3,20 +3,18 @@
 Rank r owns the cells [faces[r], faces[r+1]) along `axis` (domain cell indices), the grid
 nodes with those indices (the last rank also the closing node, rank 0 and the last rank the
 padding outside the domain) and the particles whose cell lies there. Each rank keeps a local
-grid of its owned nodes plus `GHOST` node layers on each side, which the neighbours own.
+grid of its owned nodes plus `ghost` node layers on each side, which the neighbours own.
 With one rank the same code runs with no neighbours.
 """
 import numpy as np
 
 from ..errors import ConfigError
-from ..kernels.shapes import GRID_PAD
 
-#: ghost node layers on each side of a slab: a particle in an owned cell touches at most one
-#: node below its cell and two above (cubic B-spline), plus one layer for particles that have
-#: moved up to a cell since the last migration (MUSL's second P2G comes before migration)
-GHOST = 3
-#: the thinnest slab (in cells): ghost layers must lie in the two neighbouring slabs only
-MIN_SLAB = GHOST
+# Ghost node layers on each side of a slab (`GridSpec.ghost`, 3 unless CPDI needs more): a
+# particle in an owned cell touches at most one node below its cell and two above (cubic
+# B-spline), plus one layer for particles that have moved up to a cell since the last
+# migration (MUSL's second P2G comes before migration). The thinnest slab (`min_slab`, in
+# cells) equals it: ghost layers must lie in the two neighbouring slabs only.
 
 
 def default_axis(cells):
@@ -32,14 +30,18 @@ class Decomposition:
         self.ncells = int(grid_spec.cells[self.axis])
         self.dx = float(grid_spec.cell_size[self.axis])
         self.origin = float(grid_spec.origin[self.axis])
+        self.pad = int(grid_spec.pad)
+        self.ghost = int(grid_spec.ghost)
+        self.min_slab = self.ghost
         size = dist.size
-        if self.ncells < MIN_SLAB:
+        m = self.min_slab
+        if self.ncells < m:
             raise ConfigError(key, f"{self.ncells} cells along axis {'xyz'[self.axis]}: the "
-                              f"grid needs at least {MIN_SLAB} there")
-        if self.ncells < MIN_SLAB * size:
+                              f"grid needs at least {m} there")
+        if self.ncells < m * size:
             raise ConfigError(key, f"{self.ncells} cells along axis {'xyz'[self.axis]} "
-                              f"cannot make {size} slabs of at least {MIN_SLAB} cells: use at "
-                              f"most {self.ncells // MIN_SLAB} ranks")
+                              f"cannot make {size} slabs of at least {m} cells: use at "
+                              f"most {self.ncells // m} ranks")
         if faces is None:
             faces = np.round(np.linspace(0, self.ncells, size + 1)).astype(np.int64)
         self.faces = np.asarray(faces, dtype=np.int64)
@@ -81,19 +83,19 @@ class Decomposition:
     def owned_nodes(self, rank=None):
         """[lo, hi) of owned nodes along the axis, in padded global node indices."""
         r = self.rank if rank is None else rank
-        lo = int(self.faces[r]) + GRID_PAD
-        hi = int(self.faces[r + 1]) + GRID_PAD
+        lo = int(self.faces[r]) + self.pad
+        hi = int(self.faces[r + 1]) + self.pad
         if r == 0:
             lo = 0
         if r == self.size - 1:
-            hi = self.ncells + 1 + 2 * GRID_PAD
+            hi = self.ncells + 1 + 2 * self.pad
         return lo, hi
 
     def local_nodes(self, rank=None):
-        """[lo, hi) of the nodes a rank stores: owned plus GHOST layers inside the grid."""
+        """[lo, hi) of the nodes a rank stores: owned plus ghost layers inside the grid."""
         lo, hi = self.owned_nodes(rank)
-        total = self.ncells + 1 + 2 * GRID_PAD
-        return max(lo - GHOST, 0), min(hi + GHOST, total)
+        total = self.ncells + 1 + 2 * self.pad
+        return max(lo - self.ghost, 0), min(hi + self.ghost, total)
 
     def overlap(self, nb):
         """Node ranges shared with neighbour `nb` (padded global indices):

@@ -7,8 +7,6 @@ builds no Grid.
 """
 import numpy as np
 
-from ..kernels.shapes import GRID_PAD
-
 
 class Grid:
     """Nodal arrays of the nodes this rank stores.
@@ -21,7 +19,7 @@ class Grid:
     def __init__(self, spec, nfields=1, with_normals=False, node_range=None):
         self.spec = spec
         self.dim = spec.dim
-        self.pad = GRID_PAD
+        self.pad = spec.pad
         self.dx = float(spec.cell_size[0])
         if any(abs(h - self.dx) > 1e-12 * self.dx for h in spec.cell_size):
             # one cell size for all axes keeps stencils isotropic (thesis uses dx = dy)
@@ -36,6 +34,9 @@ class Grid:
             shape[axis] = hi - lo
         self.shape = tuple(shape)
         self.origin = self.global_origin + self.offset * self.dx
+        #: position of global (padded) node 0, the kernels' coordinate origin (global node i
+        #: sits i cells from it; local node index = global - offset)
+        self.node0 = self.global_origin - self.pad * self.dx
         strides = np.ones(self.dim, dtype=np.int64)
         for a in range(self.dim - 2, -1, -1):
             strides[a] = strides[a + 1] * self.shape[a + 1]

@@ -14,7 +14,7 @@ import numpy as np
 from ..kernels.contact import multi_field_contact, touching_separation
 from ..kernels.mpm import g2p, grid_velocity, p2g
 from ..kernels.partition import cell_keys
-from ..kernels.shapes import SHAPE_CODES, static_tags
+from ..kernels.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
 from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
@@ -96,14 +96,14 @@ class MPMStage:
             k = 10 - base
             return w[k] if 0 <= k < 4 else 0.0
 
-        support = {0: 1.0, 1: 1.25, 2: 1.5, 3: 2.0}[self.kind]
+        support = {0: 1.0, 1: 1.25, 2: 1.5, 3: 2.0, 4: 1.5}[self.kind]
         return touching_separation(weight, self.grid.dx, support)
 
     @staticmethod
     def fields(case):
         """Fields this stage needs beyond the core ones."""
         out = []
-        if case.mpm.shape == "gimp":
+        if case.mpm.shape in ("gimp", "cpdi"):
             out.append(FieldSpec("lp", ("dim",)))
         if any(b.stress for b in case.bodies):
             out.append(FieldSpec("prestress", (3, 3)))
@@ -122,6 +122,21 @@ class MPMStage:
         mstate = p["mstate"][:n] if "mstate" in p else np.empty((n, 0))
         return n, lp, fext, pfield, pre, mstate
 
+    def _domain_F(self, n):
+        """F over the rows [0, n) when it shapes the particle domains (CPDI), else None."""
+        return self.p["F"][:n] if self.kind == CPDI else None
+
+    def domain_failure(self, row):
+        """Why row's particle failed if its CPDI domain outgrew the stored nodes, else None."""
+        if self.kind != CPDI:
+            return None
+        reach = cpdi_reach(self.dim, self.p["F"][row], self.p["lp"], row)
+        limit = self.case.mpm.cpdi_reach
+        if reach <= limit:
+            return None
+        return (f"its CPDI domain reaches {reach:.3f} cells from its centre, beyond "
+                f"mpm.cpdi_reach = {limit}; raise it or seed more particles per cell")
+
     def _p2g(self, with_force):
         g, p = self.grid, self.p
         n, lp, fext, pfield, _, _ = self._optional(self.n_p2g)
@@ -129,9 +144,9 @@ class MPMStage:
         with t.phase("p2g"):
             g.reset()
             p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n],
-                p["sigma"][:n], fext, lp, pfield, g.origin, g.inv_dx, g.strides, g.mass,
-                g.mom, g.force if with_force else None, g.mgrad if self.multi else None,
-                g.mx if self.multi else None)
+                p["sigma"][:n], fext, lp, self._domain_F(n), pfield, g.node0, g.offset,
+                g.inv_dx, g.strides, g.mass, g.mom, g.force if with_force else None,
+                g.mgrad if self.multi else None, g.mx if self.multi else None)
         sums = [g.mass, g.mom] + ([g.force] if with_force else [])
         if self.multi:
             sums += [g.mgrad, g.mx]
@@ -158,9 +173,10 @@ class MPMStage:
         with self.timers.phase("g2p"):
             return g2p(*self.tags, self.mat_tag, p["x"][:n], p["v"][:n],
                        p["F"][:n] if deformation else None, p["sigma"][:n], p["vol"][:n],
-                       p["vol0"][:n], lp, pfield, p["mat"][:n], self.mtypes, self.mparams,
-                       mstate, pre, g.vel, g.dv if kinematics else None, g.origin, g.inv_dx,
-                       g.strides, dt, self.flip, g.lo, g.hi)
+                       p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n],
+                       self.mtypes, self.mparams, mstate, pre, g.vel,
+                       g.dv if kinematics else None, g.node0, g.offset, g.inv_dx, g.strides,
+                       dt, self.flip, g.lo, g.hi, float(self.case.mpm.cpdi_reach))
 
     def sort_by_cell(self):
         """Reorder owned particles by grid cell so P2G/G2P walk memory in grid order."""

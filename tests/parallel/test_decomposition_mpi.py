@@ -59,7 +59,8 @@ def test_migration_conserves_count_mass_momentum_and_gids():
 @pytest.mark.parametrize("scene,kwargs", [(two_disks, {}), (two_disks, {"contact": "multi"}),
                                           (dam_break, {}), (dam_break, {"shape": "cubic",
                                                                          "transfer": "musl"}),
-                                          (loaded_bar, {})])
+                                          (loaded_bar, {}),
+                                          (loaded_bar, {"shape": "cpdi", "transfer": "musl"})])
 def test_state_after_200_steps_equals_one_rank(scene, kwargs):
     dist = world()
     sim = scene(**kwargs).simulation(dist=dist)
