@@ -84,11 +84,12 @@ def test_nan_mid_run_stops_all_ranks_and_the_last_checkpoint_restarts(tmp_path):
 
     from pmpmsph.io.snapshots import read_snapshot
 
-    case = tmp_path / "nan.toml"
+    case = tmp_path / "nan.toml"  # double-precision snapshots: compared to 1e-10 below
     case.write_text(CASE.replace("end = 100.0", "end = 0.04") + """
 [output]
 every_steps = 10
 checkpoint_every = 10
+precision = "double"
 """)
     run, clean = tmp_path / "run", tmp_path / "clean"
     r, seconds = _mpirun([str(case), "--out", str(run)], {"PMPMSPH_INJECT_NAN": "1:25"}, 300)
@@ -162,11 +163,12 @@ def test_sigkill_of_one_rank_ends_the_job_and_the_last_checkpoint_restarts(tmp_p
     from pmpmsph.io.checkpoint import read_checkpoint
     from pmpmsph.io.snapshots import list_snapshots, read_snapshot
 
-    case = tmp_path / "kill.toml"
+    case = tmp_path / "kill.toml"  # double-precision snapshots: compared to 1e-10 below
     case.write_text(CASE + """
 [output]
 every_steps = 1
 checkpoint_every = 10
+precision = "double"
 """)
     run, clean = tmp_path / "run", tmp_path / "clean"
     warm, _ = _mpirun([str(case), "--no-output", "--max-steps", "3"], {}, 600)  # JIT cache
@@ -232,6 +234,7 @@ checkpoint_every = 10
     _, s_a, a = read_snapshot(run / "particles.h5", -1)
     _, s_b, b = read_snapshot(clean / "particles.h5", -1)
     assert s_a == s_b == stop + 50
+    assert a["x"].dtype == b["x"].dtype == np.float64
     ia, ib = np.argsort(a["gid"]), np.argsort(b["gid"])
     np.testing.assert_array_equal(a["gid"][ia], b["gid"][ib])
     for name in ("x", "v"):
