@@ -14,7 +14,7 @@ from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 @njit
 def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, offset,
-        inv_dx, strides, gmass, gmom, gforce, gmgrad, gmx):
+        inv_dx, strides, gmass, gmom, gforce, gmgrad, gmx, force_dt):
     """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65).
 
     Internal force of node I: -sum_p vol_p sigma_p . grad N_I(x_p); external: sum_p N_I f_p.
@@ -27,6 +27,9 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
     sum_p N_I m_p x_p, for the contact gap). `dim_tag`/`kind_tag` are the
     compile-time dimension and shape function (`static_tags`); `origin` is the position of
     global node 0 (`Grid.node0`) and `offset` the global index of local node 0 per axis.
+    `force_dt` = dt folds the forces into the momentum (gmom receives p + dt f, gforce is
+    None): the form of Taichi's mpm88, for PIC-USL without damping, where the grid needs only
+    the updated velocity; None scatters them apart.
     """
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
@@ -60,6 +63,16 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
                 fe1 = fext[p, 1]
             if dim > 2:
                 fe2 = fext[p, 2]
+        if force_dt is not None:  # scatter p + dt f: scale the force terms by dt once here
+            s00 *= force_dt
+            s01 *= force_dt
+            s02 *= force_dt
+            s11 *= force_dt
+            s12 *= force_dt
+            s22 *= force_dt
+            mv0 += force_dt * fe0
+            mv1 += force_dt * fe1
+            mv2 += force_dt * fe2
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, F, dom, p, c, origin, inv_dx, st, off, nax)
@@ -70,15 +83,22 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
                         N = wij * w2[k]
                         node = base + i * st[0] + j * st[1] + k * st[2]
                         gmass[fld, node] += N * m
-                        gmom[fld, node, 0] += N * mv0
-                        if dim > 1:
-                            gmom[fld, node, 1] += N * mv1
-                        if dim > 2:
-                            gmom[fld, node, 2] += N * mv2
-                        if gforce is not None or gmgrad is not None:
+                        if gforce is not None or gmgrad is not None or force_dt is not None:
                             g0 = d0[i] * w1[j] * w2[k]
                             g1 = w0[i] * d1[j] * w2[k]
                             g2 = wij * d2[k]
+                        if force_dt is not None:
+                            gmom[fld, node, 0] += N * mv0 - (s00 * g0 + s01 * g1 + s02 * g2)
+                            if dim > 1:
+                                gmom[fld, node, 1] += N * mv1 - (s01 * g0 + s11 * g1 + s12 * g2)
+                            if dim > 2:
+                                gmom[fld, node, 2] += N * mv2 - (s02 * g0 + s12 * g1 + s22 * g2)
+                        else:
+                            gmom[fld, node, 0] += N * mv0
+                            if dim > 1:
+                                gmom[fld, node, 1] += N * mv1
+                            if dim > 2:
+                                gmom[fld, node, 2] += N * mv2
                         if gforce is not None:
                             gforce[fld, node, 0] += N * fe0 - (s00 * g0 + s01 * g1 + s02 * g2)
                             if dim > 1:
@@ -96,13 +116,17 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
                                 gmx[fld, node, a] += N * m * x[p, a]
 
 
+MOMENTUM, WITH_FORCE, FOLDED = 0, 1, 2
+
+
 @njit
 def grid_velocity(dim, gmass, gmom, gforce, gvel, gdv, dt, gravity, damping, mass_cutoff,
-                  with_force):
-    """Nodal velocity v = p/m and, with forces, the update of eqs. 77-79 (lumped mass):
-
-    a = (f - alpha_d m v)/m + g,  v_new = v + a dt.  `gvel` receives v_new (or v), `gdv` the
-    change v_new - v (the FLIP increment). Nodes lighter than `mass_cutoff` are left at rest.
+                  mode):
+    """Nodal velocity v = p/m (mode MOMENTUM) and, with forces (WITH_FORCE), the update of
+    eqs. 77-79 (lumped mass): a = (f - alpha_d m v)/m + g,  v_new = v + a dt. `gvel` receives
+    v_new (or v), `gdv` the change v_new - v (the FLIP increment). FOLDED: gmom holds
+    p + dt f (`p2g` with `force_dt`), so v_new = gmom/m + g dt; there is no old velocity and
+    gdv is left 0 (only PIC uses this mode). Nodes lighter than `mass_cutoff` stay at rest.
     """
     nf, nn = gmass.shape
     for fld in range(nf):
@@ -116,7 +140,10 @@ def grid_velocity(dim, gmass, gmom, gforce, gvel, gdv, dt, gravity, damping, mas
             inv_m = 1.0 / m
             for a in range(dim):
                 vi = gmom[fld, i, a] * inv_m
-                if with_force:
+                if mode == FOLDED:
+                    gvel[fld, i, a] = vi + gravity[a] * dt
+                    gdv[fld, i, a] = 0.0
+                elif mode == WITH_FORCE:
                     acc = gforce[fld, i, a] * inv_m + gravity[a] - damping * vi
                     gvel[fld, i, a] = vi + acc * dt
                     gdv[fld, i, a] = acc * dt
@@ -257,13 +284,16 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
                         u2 = gvel[fld, node, 2] if dim > 2 else 0.0
                         if gdv is not None:
                             vp0 += N * u0
-                            dv0 += N * gdv[fld, node, 0]
                             if dim > 1:
                                 vp1 += N * u1
-                                dv1 += N * gdv[fld, node, 1]
                             if dim > 2:
                                 vp2 += N * u2
-                                dv2 += N * gdv[fld, node, 2]
+                            if flip != 0.0:  # PIC needs no increments (a predictable branch)
+                                dv0 += N * gdv[fld, node, 0]
+                                if dim > 1:
+                                    dv1 += N * gdv[fld, node, 1]
+                                if dim > 2:
+                                    dv2 += N * gdv[fld, node, 2]
                         if F is not None:
                             g0 = d0[i] * w1[j] * w2[k]
                             L00 += u0 * g0
