@@ -34,6 +34,9 @@ def main(argv=None):
     sc.add_argument("--out", default="bench_results")
     sc.add_argument("--output-every", type=int, default=0,
                     help="also write a snapshot every N steps (output phase)")
+    sc.add_argument("--corun", action="store_true",
+                    help="also time two independent 1-rank runs of half the scene at once "
+                         "against one alone: what sharing the machine costs without MPI")
     io = sub.add_parser("io", help="output overhead and write bandwidth (bench/io.py)")
     io.add_argument("--ranks", type=int, default=2)
     io.add_argument("--particles", type=int, default=1_000_000)
@@ -72,6 +75,10 @@ def main(argv=None):
         from .scaling import run
 
         run(args.ranks, args.particles, args.steps, args.out, args.output_every)
+        if args.corun:
+            from .scaling import corun
+
+            corun(args.particles, args.steps, args.out)
         return 0
 
     from .peers import install_peers, run_peer

@@ -8,6 +8,11 @@ step, particle-steps/s per rank, per-phase times (slowest rank), bytes sent per 
 The scene: a 2D water column (Tait, c ~ 30 m/s) collapsing in a 2 x 1 box, quadratic
 B-splines, USL, CFL 0.5; particles flow across the slab faces, so migration and the load
 balancer take part.
+
+`--corun` adds the co-run ceiling: one 1-rank run of half the particles alone, then two such
+runs at once (separate processes, no MPI between them). Their slowdown is what two ranks on
+this machine lose to each other through shared caches and memory bandwidth alone, so
+T(alone) / T(co-run) bounds the 2-rank efficiency a bandwidth-bound step can reach here.
 """
 import json
 import math
@@ -83,16 +88,47 @@ def worker(argv):
     return 0
 
 
-def run(ranks, particles, steps, out, output_every=0):
+def _launcher():
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     # on a cluster: PMPMSPH_MPIRUN="srun --ntasks" (see slurm/); here scripts/mpirun -n
-    launcher = os.environ.get("PMPMSPH_MPIRUN", os.path.join(root, "scripts", "mpirun") + " -n")
+    return os.environ.get("PMPMSPH_MPIRUN", os.path.join(root, "scripts", "mpirun") + " -n")
+
+
+def _worker_cmd(ranks, particles, steps, path):
+    return [*_launcher().split(), str(ranks), sys.executable, "-m", "pmpmsph.bench",
+            "scaling-worker", "--particles", str(particles), "--steps", str(steps),
+            "--json", path]
+
+
+def corun(particles, steps, out):
+    """Half the scene on one rank alone, then two copies at once (see the module doc)."""
+    half = particles // 2
+    alone = os.path.join(out, "corun_alone.json")
+    subprocess.run(_worker_cmd(1, half, steps, alone), check=True)
+    paths = [os.path.join(out, f"corun_{k}.json") for k in range(2)]
+    procs = [subprocess.Popen(_worker_cmd(1, half, steps, p)) for p in paths]
+    if any(p.wait() != 0 for p in procs):
+        raise RuntimeError("a co-run worker failed")
+    walls = []
+    for p in [alone] + paths:
+        with open(p) as fh:
+            walls.append(json.load(fh)["wall"])
+    ceiling = walls[0] / max(walls[1:])
+    print(f"\nco-run ceiling, {half} particles per process, {steps} steps: alone "
+          f"{walls[0] / steps:.4f} s/step, two at once {walls[1] / steps:.4f} and "
+          f"{walls[2] / steps:.4f} s/step -> T(alone)/T(co-run) = {ceiling:.2f}")
+    with open(os.path.join(out, "corun.json"), "w") as fh:
+        json.dump({"particles_each": half, "steps": steps, "alone": walls[0],
+                   "corun": walls[1:], "ceiling": ceiling}, fh, indent=1)
+    return ceiling
+
+
+def run(ranks, particles, steps, out, output_every=0):
     os.makedirs(out, exist_ok=True)
     rows = []
     for n in ranks:
         path = os.path.join(out, f"scaling_{n}.json")
-        cmd = [*launcher.split(), str(n), sys.executable, "-m", "pmpmsph.bench", "scaling-worker",
-               "--particles", str(particles), "--steps", str(steps), "--json", path]
+        cmd = _worker_cmd(n, particles, steps, path)
         if output_every:
             cmd += ["--out-dir", os.path.join(out, f"scaling_run_{n}"), "--output-every",
                     str(output_every)]
