@@ -13,6 +13,7 @@ methods that do not converge and why). `--readme` also copies the figures to doc
 and rewrites the README section between the accuracy markers with the summary.
 """
 import csv
+import json
 import os
 import time
 
@@ -109,7 +110,16 @@ def run(args, dist):
             write_csv(os.path.join(args.out, f"{study['key']}.csv"), rows)
     wall = dist.max(time.perf_counter() - t0)
     if root:
-        report.build(args.out, chosen, quick=args.quick, ranks=dist.size, wall=wall,
-                     readme=args.readme)
+        meta = os.path.join(args.out, "sweep.json")
+        if args.report_only and os.path.exists(meta):  # the figures of the sweep itself
+            with open(meta) as fh:
+                m = json.load(fh)
+        else:
+            m = {"quick": args.quick, "ranks": dist.size, "wall": wall,
+                 "date": time.strftime("%Y-%m-%d")}
+            with open(meta, "w") as fh:
+                json.dump(m, fh)
+        report.build(args.out, chosen, quick=m["quick"], ranks=m["ranks"], wall=m["wall"],
+                     readme=args.readme, date=m["date"])
         print(f"accuracy sweep: {wall:.0f} s on {dist.size} rank(s); written {args.out}")
     return 0
