@@ -159,7 +159,8 @@ class OutputSpec:
     every: Optional[float] = None       # snapshot interval in time
     every_steps: Optional[int] = None   # or in steps
     # steps between diagnostics rows; None: every step up to DIAG_AUTO_PARTICLES particles,
-    # else every DIAG_AUTO_EVERY steps (a row costs about a tenth of a step; see README)
+    # else every DIAG_AUTO_EVERY steps (a row costs a sixth to a fifth of a step at a
+    # million particles; README "Output overhead")
     diagnostics_every: Optional[int] = None
     # what a viewer needs: ids, method/body, position, velocity, mass, density, stress
     # (vol = mass/rho and F are left out for size: add them by name)

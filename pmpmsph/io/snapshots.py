@@ -16,11 +16,12 @@ Layout of ``RUN.h5`` (the same whichever way it was written)::
 
 Tensors such as ``F`` keep their natural shape (n_total, 3, 3), row-major, so ``F[i]`` is
 the 3x3 matrix of particle i (the XDMF sidecar declares them as ``Tensor`` with dimensions
-``N 3 3``, which ParaView/VTK read as 9-component arrays). Fields named in ``symmetric``
-(the Cauchy stress ``sigma`` of a run) are stored as their 6 independent components
-(n_total, 6) in the XDMF ``Tensor6`` order xx, xy, xz, yy, yz, zz, with the dataset attribute
-``symmetric`` naming that order: ParaView/VTK expand them to the full 9-component tensor and
-:func:`read_snapshot` to (n, 3, 3). Boolean fields are stored as uint8.
+``N 3 3``, which ParaView/VTK read as 9-component arrays). Fields named in ``symmetric`` are
+stored as their 6 independent components (n_total, 6) in the XDMF ``Tensor6`` order xx, xy,
+xz, yy, yz, zz, with the dataset attribute ``symmetric`` naming that order;
+:func:`read_snapshot` expands them to (n, 3, 3), and so does VTK's XDMF2 reader, but
+ParaView's XDMF3 reader shows the 6 raw components under VTK's labels (xx, yy, zz, xy, yz,
+xz), so a run stores its stress in full. Boolean fields are stored as uint8.
 
 ``precision``: ``"single"`` stores every float field as float32 (half the bytes: what a
 viewer needs, and the disk is the cost of a snapshot), ``"double"`` as float64, None (the

@@ -14,9 +14,9 @@ render). Snapshots with no particles are left out of the sidecar.
 Attribute types by dataset shape: (N,) Scalar, (N, 3) Vector, (N, 3, 3) or (N, 9) Tensor,
 (N, 6) Tensor6, other (N, k) Matrix. Tensors are stored in their natural (N, 3, 3) shape and
 declared with ``Dimensions="N 3 3"``; the readers take the 9 values of a particle as one
-9-component tuple (row-major: xx, xy, xz, yx, ...). A run stores its stress as a symmetric
-(N, 6) Tensor6 (xx, xy, xz, yy, yz, zz, the XDMF order), which VTK/ParaView expand to the
-full 9-component tensor. NumberType/Precision follow the stored dtype (Float 4 for a
+9-component tuple (row-major: xx, xy, xz, yx, ...). A symmetric (N, 6) Tensor6 is in the
+XDMF order xx, xy, xz, yy, yz, zz (VTK's XDMF2 reader expands it to 9 components; the XDMF3
+reader keeps 6). NumberType/Precision follow the stored dtype (Float 4 for a
 single-precision run). Fields of other ranks or dtypes are left out of the sidecar (they
 stay in the HDF5 file).
 """

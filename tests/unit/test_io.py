@@ -405,8 +405,8 @@ every_steps = 10
 
 
 def test_run_snapshot_is_float32_of_the_state_and_checkpoint_is_exact(dist, tmp_path):
-    """A run's default snapshot holds the double state rounded to float32 (sigma from its
-    6 stored components); the checkpoint of the same step is the float64 state bit for bit."""
+    """A run's default snapshot holds the double state rounded to float32 (sigma as its full
+    3x3 tensor); the checkpoint of the same step is the float64 state bit for bit."""
     from pmpmsph.io.checkpoint import read_checkpoint
     from pmpmsph.simulation import Simulation
 
@@ -432,6 +432,9 @@ def test_run_snapshot_is_float32_of_the_state_and_checkpoint_is_exact(dist, tmp_
         else:
             assert snap[k].dtype == want.dtype, k
             np.testing.assert_array_equal(snap[k], want, err_msg=k)
+    with h5py.File(str(tmp_path / "run" / "particles.h5"), "r") as f:
+        dset = f["snapshots/000002/sigma"]  # full 9 components: every XDMF reader agrees
+        assert dset.shape == (n, 3, 3) and "symmetric" not in dset.attrs
     _, rows = read_checkpoint(ck)
     for k in ("x", "v", "F", "sigma", "mass", "vol"):
         assert rows[k].dtype == np.float64, k
