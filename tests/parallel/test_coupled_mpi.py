@@ -55,3 +55,20 @@ def test_handover_equals_one_rank():
     ref.run()
     assert dist.sum(sim.coupling.handed_over) == ref.coupling.handed_over > 0
     _compare(dist, sim, ref)
+
+
+def test_plate_with_hole_equals_one_rank():
+    """Scene 11 (cases/coupled_plate_hole.toml), 150 steps into the load ramp: the SPH disc
+    around the hole, its transition ring and the MPM rim cut by the slab faces."""
+    from pathlib import Path
+
+    from pmpmsph import load_case_file
+    from pmpmsph.simulation import Simulation
+
+    path = Path(__file__).resolve().parents[2] / "cases" / "coupled_plate_hole.toml"
+    dist = world()
+    sim = Simulation(load_case_file(path), dist=dist)
+    ref = Simulation(load_case_file(path), dist=serial())
+    sim.run(max_steps=150)
+    ref.run(max_steps=150)
+    _compare(dist, sim, ref)
