@@ -66,6 +66,8 @@ class SPHSpec:
     artificial_stress_exponent: float = 4.0
     damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
     wall_no_slip: bool = True          # dummy walls: no-slip or free slip
+    pressure_min: float = float("-inf")  # fluids: floor of the pressure (0: no tension)
+    hydrostatic: bool = False          # fluids start at the hydrostatic density
 
     @property
     def kernel_code(self):

@@ -252,7 +252,9 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
         damping=t.number("damping", 0.0, min=0.0),
-        wall_no_slip=walls == "no_slip")
+        wall_no_slip=walls == "no_slip",
+        pressure_min=t.number("pressure_min", float("-inf")),
+        hydrostatic=t.boolean("hydrostatic", False))
     t.finish()
     return spec
 

@@ -152,10 +152,11 @@ def pair_stress(dim_tag, n, sigma, rho, S):
 
 @njit
 def sph_stress(n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mparams,
-               sigma, vol, mass):
+               sigma, vol, mass, p_min):
     """Stress and volume (m/rho) of owned SPH rows. A fluid's state is its continuity
     density: its F is set to diag(J, 1, 1) with J = rho0/rho (the Tait stress and energy
-    depend on det F only), a solid's stress comes from its integrated F. The material state
+    depend on det F only; its pressure is floored at `p_min`), a solid's stress comes from
+    its integrated F. The material state
     restarts from `mstate_in` (the state at the step start) so that multi-stage integrators
     commit it once. Returns the first row with a NaN or non-positive J, or -1."""
     bad = -1
@@ -182,6 +183,13 @@ def sph_stress(n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mparams
             for j in range(3):
                 La[i, j] = L[a, i, j]
         compute_stress(mtypes[mi], Fa, La, dt, mstate[a], mparams[mi], sigma[a])
+        if mtypes[mi] == TAIT_FLUID:
+            # a fluid under tension (a splash, the wake of a body) clumps: its pair forces
+            # attract (the tensile instability of SPH); `p_min` (e.g. 0) floors the pressure
+            p = -(sigma[a, 0, 0] + sigma[a, 1, 1] + sigma[a, 2, 2]) / 3.0
+            if p < p_min:
+                for i in range(3):
+                    sigma[a, i, i] += p - p_min
         if not np.isfinite(sigma[a, 0, 0]) and bad < 0:
             bad = a
         vol[a] = mass[a] / rho[a]
@@ -277,9 +285,13 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     the kernel evaluations.
 
     Across a material interface (mat_a != mat_b, e.g. water against an elastic MPM
-    obstacle) the pair transmits only compressive isotropic stress: the stress term is
-    -(p_a+/rho_a^2 + p_b+/rho_b^2) I with p+ = max(-tr(sigma)/3, 0) (plus the artificial
-    viscosity), a frictionless, non-adhesive contact. The full sigma/rho^2 term would let a
+    obstacle) the pair transmits only compressive isotropic stress, the contact pressure
+    p_c = max(p_a, p_b, 0) on both ends: the stress term is -p_c (1/rho_a^2 + 1/rho_b^2) I
+    (plus the artificial viscosity), a frictionless, non-adhesive contact. Over a plane
+    interface these pairs sum to the traction p_c n (as a uniform sigma/rho^2 term does),
+    whereas the pair's own two pressures give (p_a + p_b)/2: the solid's pressure at its
+    surface lags the fluid's (its boundary points carry part of the load: seed 000 §5.2's
+    bar shows 0.75 of it), and with it a floating block sank ~35 % below Archimedes' draft. The full sigma/rho^2 term would let a
     solid in tension pull fluid particles into it; within one material (the coupling of
     seed 000) the full term is used.
 
@@ -389,10 +401,10 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                 t3 = S[a, 3] + S[b, 3] if dim > 1 else 0.0
                 t4 = S[a, 4] + S[b, 4] if dim > 2 else 0.0
                 t5 = S[a, 5] + S[b, 5] if dim > 2 else 0.0
-            else:  # material interface: compressive pressure only
-                pa = -(S[a, 0] + S[a, 1] + S[a, 2]) / 3.0
-                pb = -(S[b, 0] + S[b, 1] + S[b, 2]) / 3.0
-                q = -(max(pa, 0.0) + max(pb, 0.0)) - pi
+            else:  # material interface: the contact pressure, compressive only
+                pc = max(-(S[a, 0] + S[a, 1] + S[a, 2]) * rho[a] * rho[a],
+                         -(S[b, 0] + S[b, 1] + S[b, 2]) * rho[b] * rho[b], 0.0) / 3.0
+                q = -pc * (1.0 / (rho[a] * rho[a]) + 1.0 / (rho[b] * rho[b])) - pi
                 t0 = q
                 t1 = q if dim > 1 else 0.0
                 t2 = q if dim > 2 else 0.0

@@ -13,8 +13,8 @@ SPH = 1  # the `method` code of an SPH particle (kernels.sph)
 @njit
 def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho, L,
             save, with_F):
-    """y <- c0 y0 + c1 y + dtc f(y) for y = (x, v, rho, F), f = (v, acc, drho, L F), on
-    owned SPH rows (walls stay put). One formula covers Euler, predictor-corrector and
+    """y <- c0 y0 + c1 y + dtc f(y) for y = (x, v, log rho, F), f = (v, acc, drho/rho, L F),
+    on owned SPH rows (walls stay put). One formula covers Euler, predictor-corrector and
     TVD-RK3 stages. Positions move with the velocity at the start of the stage. With `save`
     the current y is first copied to y0 (the step start) in the same pass; without `with_F`
     F is left alone (fluids: F follows from the density)."""
@@ -36,7 +36,13 @@ def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, 
             xn = c0 * x0[a, d] + c1 * x[a, d] + dtc * v[a, d]
             v[a, d] = c0 * v0[a, d] + c1 * v[a, d] + dtc * acc[a, d]
             x[a, d] = xn
-        rho[a] = c0 * r0[a] + c1 * rho[a] + dtc * drho[a]
+        # the same stage combination of log rho, whose rate is drho/rho = -div v (seed 000
+        # eq. 2.5 over rho): to first order the linear update, but positive whatever the step
+        # (a splashing particle whose neighbours fly apart cannot reach rho <= 0)
+        lr = c1 * np.log(rho[a]) + dtc * drho[a] / rho[a]
+        if c0 != 0.0:
+            lr += c0 * np.log(r0[a])
+        rho[a] = np.exp(lr)
         if not with_F:
             continue
         for i in range(dim):

@@ -74,6 +74,7 @@ class SPHStage:
         self.evaluated = False
         self.evaluations = 0
         self.rebuilds = 0
+        self._hydrostatic_done = False
 
     @staticmethod
     def fields(case):
@@ -213,7 +214,40 @@ class SPHStage:
         with self.timers.phase("sph"):
             return sph_stress(n, p["method"], p["mat"], p["rho"], p["F"], p["L"], dt,
                               mstate_in, self._mstate(n), self.mtypes, self.mparams,
-                              p["sigma"], p["vol"], p["mass"])
+                              p["sigma"], p["vol"], p["mass"], self.spec.pressure_min)
+
+    def hydrostatic_start(self):
+        """Fluid bodies start at rest in the hydrostatic state below their top (along g):
+        integrating dp/dz = rho(p) |g| with the Tait law rho = rho0 (1 + p/kappa)^(1/gamma)
+        (seed 003, eq. 50) from p = 0 at the top gives, at depth z,
+            rho = rho0 (1 + (gamma - 1)/gamma rho0 |g| z/kappa)^(1/(gamma - 1)).
+        The top is the body's highest particle plus half a spacing (a flat surface).
+        Without it a column seeded at rho0 drops by its compression and rings
+        (cases/sph_hydrostatic.toml). Applied once, at the first step from t = 0."""
+        from ..materials.codes import TAIT_FLUID
+
+        p = self.p
+        n = p.n_owned
+        g = float(np.linalg.norm(self.gravity))
+        if g == 0.0:
+            return
+        up = -self.gravity[: self.dim] / g
+        height = p["x"][:n] @ up
+        for i, b in enumerate(self.case.bodies):
+            mi = list(self.case.materials).index(b.material)
+            if b.wall or b.method != "sph" or self.mtypes[mi] != TAIT_FLUID:
+                continue
+            mine = (p["body"][:n] == i) & (p["method"][:n] == 1)
+            top = float(height[mine].max()) if mine.any() else -np.inf
+            if self.halo_enabled and self.dist.size > 1:
+                top = self.dist.max(top)
+            if not np.isfinite(top):
+                continue
+            top += 0.5 * self.spec.spacing
+            kappa, gamma, rho0 = self.mparams[mi, 0], self.mparams[mi, 1], self.mparams[mi, 2]
+            z = top - height[mine]
+            p["rho"][:n][mine] = rho0 * (1.0 + (gamma - 1.0) / gamma * rho0 * g * z
+                                         / kappa) ** (1.0 / (gamma - 1.0))
 
     def initialise(self):
         """Stress from the initial state, then the first rates (before step 1)."""
@@ -260,6 +294,10 @@ class SPHStage:
         """Advance owned SPH particles by dt; returns a failed row or -1."""
         p = self.p
         n = p.n_owned
+        if time == 0.0 and self.spec.hydrostatic and not self._hydrostatic_done:
+            self.hydrostatic_start()
+            self._hydrostatic_done = True
+            self.evaluated = False
         if not self.evaluated:
             self.initialise()
         m0 = self._mstate(n).copy()
