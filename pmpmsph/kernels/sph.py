@@ -291,7 +291,9 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     interface these pairs sum to the traction p_c n (as a uniform sigma/rho^2 term does),
     whereas the pair's own two pressures give (p_a + p_b)/2: the solid's pressure at its
     surface lags the fluid's (its boundary points carry part of the load: seed 000 §5.2's
-    bar shows 0.75 of it), and with it a floating block sank ~35 % below Archimedes' draft. The full sigma/rho^2 term would let a
+    bar shows 0.75 of it). Measured on the float of scene 7 held at Archimedes' draft in
+    hydrostatic water: the pairs carry 102 % of the block's weight (43 % with (p_a + p_b)/2)
+    when the two lattices meet one water spacing apart. The full sigma/rho^2 term would let a
     solid in tension pull fluid particles into it; within one material (the coupling of
     seed 000) the full term is used.
 
