@@ -18,7 +18,7 @@ from .materials.dispatch import material_tag
 from .parallel.decomposition import Decomposition
 from .parallel.distributor import Distributor
 from .parallel.balance import LoadBalancer
-from .parallel.migration import migrate, migrate_all
+from .parallel.migration import MigrationSchedule, migrate, migrate_all
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
 from .timing import Timers
@@ -31,6 +31,8 @@ DIAG_COLUMNS = ("time", "step", "dt", "kinetic", "strain", "potential", "total",
 SORT_EVERY = 100
 #: below this many particles per rank everything is in cache and sorting buys nothing
 SORT_MIN_PARTICLES = 20_000
+#: timer phases that are a rank's own work (the rest is waiting, I/O or bookkeeping)
+COMPUTE_PHASES = ("p2g", "grid", "g2p", "sph", "integrate", "neighbours", "coupling")
 
 
 def _hms(seconds):
@@ -68,6 +70,7 @@ class Simulation:
 
             self.coupling = Coupling(case, self.particles, self.mpm, self.sph)
         self.migrated = 0
+        self.migration = MigrationSchedule(self.dist, lazy=self.sph is None)
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
@@ -303,14 +306,18 @@ class Simulation:
             self.particles.drop_halo()
         if self.prescribed is not None:
             self.prescribed.apply(self.time, self.dt, x_before)
-        if self.dist.any(bad >= 0):
+        dec = self.decomposition
+        failed, due = self.migration.after_step(
+            bad >= 0, self.particles, dec.axis if dec else 0, dec.dx if dec else 1.0, self.dt)
+        if failed:
             self._fail(bad)
         self.time += self.dt
         self.step_count += 1
-        if self.decomposition is not None and self.dist.size > 1:
+        if due and dec is not None:
             with self.timers.phase("migration"):
-                sent, received = migrate(self.decomposition, self.particles, self.step_count)
+                sent, received = migrate(dec, self.particles, self.step_count)
                 self.migrated += sent
+                self.migration.migrated()
             if self.sph is not None and (sent or received):
                 self.sph.invalidate()
         if (self.mpm is not None and self.coupling is None  # coupling keeps its own order
@@ -333,21 +340,38 @@ class Simulation:
             faces, before, after = np.asarray(force_faces), None, None
         else:
             faces, before, after = self.balancer.propose(dec, self.particles["x"],
-                                                         nodes_per_layer)
+                                                         nodes_per_layer, self._busy())
         if faces is None:
             return False
-        self.decomposition = dec.with_faces(faces)
-        if self.mpm is not None:
-            self.mpm.set_decomposition(self.decomposition)
-        if self.sph is not None:
-            self.sph.set_decomposition(self.decomposition)
+        self._apply_faces(faces)
         self.migrated += migrate_all(self.decomposition, self.particles, self.step_count)
+        self.migration.migrated()
         if self.balancer is not None:
             self.balancer.history.append((self.step_count, before, after, faces.tolist()))
         log.info("step %d: slab faces moved to %s (imbalance %s -> %s)", self.step_count,
                  faces.tolist(), f"{before:.2f}" if before is not None else "?",
                  f"{after:.2f}" if after is not None else "?")
         return True
+
+    def _busy(self):
+        """Every rank's compute seconds since the last call (balance_by = "time"), or None:
+        the stages' kernel phases, not the waiting in exchanges (collective)."""
+        if self.case.parallel.balance_by != "time":
+            return None
+        now = sum(self.timers.total.get(k, 0.0) for k in COMPUTE_PHASES)
+        last, self._busy_mark = self._busy_mark, now
+        if self.step_count == 0:  # nothing measured yet (the balance before step 1)
+            return None
+        busy = self.dist.allgather_float(now - last if now >= last else now)
+        return busy if np.all(busy > 0) else None
+
+    def _apply_faces(self, faces):
+        """New slab faces for the decomposition and the stages (particles stay put)."""
+        self.decomposition = self.decomposition.with_faces(faces)
+        if self.mpm is not None:
+            self.mpm.set_decomposition(self.decomposition)
+        if self.sph is not None:
+            self.sph.set_decomposition(self.decomposition)
 
     def _fail(self, bad):
         p = self.particles
@@ -448,6 +472,7 @@ class Simulation:
     case_overrides = ()
     case_dir = None
     _last_checkpoint_step = -1
+    _busy_mark = 0.0  # compute seconds at the last load-balance check (balance_by = "time")
 
     def checkpoint_path(self, name="checkpoint.h5"):
         """Where checkpoints go: the output folder (None when the run writes no output)."""
@@ -534,7 +559,20 @@ class Simulation:
                                   f"{tuple(trailing)}, this case has {p.arrays[k].dtype} {want}")
         dec = self.decomposition
         n_total = int(head["n_total"])
-        if dec is not None:
+        faces = np.asarray(head["faces"], np.int64)
+        same_slabs = (dec is not None and len(faces) == self.dist.size + 1
+                      and head["axis"] == dec.axis and faces[-1] == dec.ncells)
+        if same_slabs:
+            # the checkpoint's slabs and each rank's own rows in their order: a particle not
+            # yet migrated (MigrationSchedule) stays where it was, so the run goes on bit for
+            # bit as if never interrupted
+            if not np.array_equal(faces, dec.faces):
+                self._apply_faces(faces)
+                dec = self.decomposition
+            counts = np.asarray(head["counts"], np.int64)
+            lo = int(counts[: self.dist.rank].sum())
+            kw = {"rows": (lo, lo + int(counts[self.dist.rank]))}
+        elif dec is not None:
             kw = {"keep": dec.keep}
         else:  # no slabs: rank r takes an equal share of the rows
             r, size = self.dist.rank, self.dist.size
@@ -552,12 +590,7 @@ class Simulation:
         if got != n_total:
             raise ConfigError("--restart", f"restored {got} of the checkpoint's {n_total} "
                               "particles")
-        faces = np.asarray(head["faces"], np.int64)
-        if (dec is not None and len(faces) == self.dist.size + 1 and head["axis"] == dec.axis
-                and faces[-1] == dec.ncells):
-            if not np.array_equal(faces, dec.faces):
-                self.rebalance(force_faces=faces)
-        elif self.balancer is not None:
+        if not same_slabs and self.balancer is not None:
             self.rebalance()
         self.time = float(head["time"])
         self.step_count = int(head["step"])

@@ -183,6 +183,7 @@ class ParallelSpec:
     axis: Optional[int] = None      # slab axis; None = the longest
     balance_every: int = 50         # steps between load-balance checks (0: never)
     balance_threshold: float = 0.1  # rebalance when max work / mean work - 1 exceeds this
+    balance_by: str = "work"        # "work": particles + nodes; "time": measured compute time
 
 
 @dataclass(frozen=True)

@@ -500,7 +500,8 @@ def case_from_dict(data, name="case", text=""):
     axis = pt.string("axis", "auto", choices=("auto",) + tuple("xyz"[:dim]))
     parallel = ParallelSpec(axis=None if axis == "auto" else "xyz".index(axis),
                             balance_every=pt.number("balance_every", 50, integer=True, min=0),
-                            balance_threshold=pt.number("balance_threshold", 0.1, min_open=0.0))
+                            balance_threshold=pt.number("balance_threshold", 0.1, min_open=0.0),
+                            balance_by=pt.string("balance_by", "work", choices=("work", "time")))
     pt.finish()
     root.finish()
     return Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,

@@ -29,6 +29,17 @@ def slab_leavers(x, axis, origin, inv_dx, ncells, lo_cell, hi_cell):
 
 
 @njit
+def max_abs_column(v, axis, n):
+    """max |v[p, axis]| over the rows [0, n) (0 for none; NaN propagates)."""
+    m = 0.0
+    for p in range(n):
+        a = abs(v[p, axis])
+        if not a <= m:
+            m = a
+    return m
+
+
+@njit
 def cell_keys(x, origin, inv_dx, strides):
     """Linear cell index of each particle (C order over the grid), for sorting by cell."""
     n, dim = x.shape

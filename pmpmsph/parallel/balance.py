@@ -8,6 +8,14 @@ the most loaded rank exceeds the mean by more than `threshold`, new faces are pl
 quantiles of the cumulative work and kept only if they cut the imbalance at least in half
 (hysteresis: a balanced partition never flips back and forth). Deterministic: every rank
 computes the same faces from the same global histogram.
+
+With `[parallel] balance_by = "time"` the model is calibrated by what each rank measured:
+every rank's compute time since the last check (its stages' kernels, not the waiting in
+halo exchanges) divided by its modelled work gives its seconds per work unit, each layer's
+work is scaled by its owner's, and the faces go to the quantiles of that. Ranks that run
+slower per particle (a busier core, worse cache locality) then get fewer particles; the
+imbalance tested against the threshold is the measured one. The faces then depend on
+timings, so runs are no longer bit-for-bit repeatable (only equal to round-off).
 """
 import numpy as np
 
@@ -46,15 +54,35 @@ def balanced_faces(work, size, min_width):
     return np.array(faces, dtype=np.int64)
 
 
+def calibrated_work(faces, work, busy):
+    """Layer work scaled by its owner's measured seconds per modelled work unit (ranks
+    without work take the mean rate), so that each rank's total equals its busy time."""
+    modelled = rank_work(faces, work)
+    busy = np.asarray(busy, dtype=np.float64)
+    ok = (modelled > 0) & (busy > 0)
+    if not np.any(ok):
+        return work
+    rate = np.full(len(modelled), busy[ok].sum() / modelled[ok].sum())
+    rate[ok] = busy[ok] / modelled[ok]
+    scaled = work.copy()
+    for r in range(len(modelled)):
+        scaled[faces[r]:faces[r + 1]] *= rate[r]
+    return scaled
+
+
 class LoadBalancer:
     def __init__(self, every, threshold):
         self.every = every
         self.threshold = threshold
         self.history = []  # (step, imbalance before, imbalance after, faces)
 
-    def propose(self, dec, x, nodes_per_layer):
-        """New faces, or None to keep the present ones; collective (all ranks call it)."""
+    def propose(self, dec, x, nodes_per_layer, busy=None):
+        """New faces, or None to keep the present ones; collective (all ranks call it).
+        `busy`: every rank's measured compute seconds since the last check (balance_by =
+        "time"), the same array on every rank; None balances the modelled work."""
         work = layer_work(dec, x, nodes_per_layer)
+        if busy is not None:
+            work = calibrated_work(dec.faces, work, busy)
         before = imbalance(dec.faces, work)
         if before <= self.threshold:
             return None, before, before

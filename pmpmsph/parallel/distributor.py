@@ -55,6 +55,18 @@ class Distributor:
 
         return self.comm.allreduce(value, op=MPI.MAX)
 
+    def max_array(self, values):
+        """Element-wise global maximum of a short float64 vector (one collective for several
+        decisions)."""
+        arr = np.ascontiguousarray(values, dtype=np.float64)
+        if self.size == 1:
+            return arr
+        from mpi4py import MPI
+
+        out = np.empty_like(arr)
+        self.comm.Allreduce(arr, out, op=MPI.MAX)
+        return out
+
     def any(self, flag):
         """True on every rank if `flag` is true on any rank (collective decisions, no hangs)."""
         return bool(self.max(int(bool(flag))))
@@ -67,6 +79,12 @@ class Distributor:
 
         out = self.comm.exscan(int(count), op=MPI.SUM)
         return 0 if out is None else int(out)
+
+    def allgather_float(self, value):
+        """Every rank's float, on every rank (np.float64 array of length size)."""
+        if self.size == 1:
+            return np.array([value], dtype=np.float64)
+        return np.array(self.comm.allgather(float(value)), dtype=np.float64)
 
     def gather_counts(self, count):
         """Every rank's count, on every rank (np.int64 array of length size)."""

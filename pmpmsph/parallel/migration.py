@@ -8,7 +8,7 @@ the slab is wrong), decided collectively so no rank waits forever.
 import numpy as np
 
 from ..errors import RunError
-from ..kernels.partition import slab_leavers
+from ..kernels.partition import max_abs_column, slab_leavers
 
 TAG_COUNT = 21
 TAG_DATA = 22
@@ -105,6 +105,45 @@ def migrate(decomposition, particles, step=0, hop=False):
 
 
 migrate.bytes_sent = 0
+
+
+class MigrationSchedule:
+    """When to migrate, decided collectively after every step together with the step's
+    failure check (one allreduce for both).
+
+    A particle may stay with its old rank for a while after crossing a slab face: its P2G
+    lands on ghost nodes, which `GridHalo.reduce` adds into their owner, and G2P reads ghost
+    velocities, which `GridHalo.broadcast` fills, as long as its stencil stays inside the
+    ghost layers, which leave one cell for such moves (`parallel/decomposition.py`). So a pure
+    MPM scene migrates only when the particles may have moved, since the last migration,
+    close to that cell along the slab axis: the bound is the sum over steps of dt times the
+    global max |v| along the axis, and migration is due once it plus twice the last step's
+    share (the next step's move, with room for it to grow; MUSL's second P2G comes before
+    migration) passes SLACK cells. A slow scene then migrates every tens to thousands of
+    steps instead of every step. SPH and coupled scenes, whose halos are chosen by owner,
+    migrate every step.
+    """
+    SLACK = 0.9
+
+    def __init__(self, dist, lazy):
+        self.dist = dist
+        self.lazy = lazy and dist.size > 1
+        self.drift = 0.0  # bound on any particle's move along the axis since the migration
+
+    def after_step(self, failed, particles, axis, dx, dt):
+        """(failed anywhere, migration due) on every rank."""
+        if not self.lazy:
+            return self.dist.any(failed), self.dist.size > 1
+        vmax = max_abs_column(particles["v"], axis, particles.n_owned)
+        flag, vmax = self.dist.max_array((float(failed), vmax))
+        if flag > 0.0:
+            return True, False
+        share = dt * vmax / dx
+        self.drift += share
+        return False, not (self.drift + 2.0 * share <= self.SLACK)  # NaN: migrate
+
+    def migrated(self):
+        self.drift = 0.0
 
 
 def migrate_all(decomposition, particles, step=0):

@@ -9,13 +9,15 @@ __all__ = ["coupled_bar_1d", "coupled_stress_bar", "dam_break", "handover_bar", 
            "shear_velocity", "sph_bar_1d", "sph_dam_break", "tl_plate", "two_disks"]
 
 
-def dam_break(shape="quadratic", transfer="usl", barrier=True, balance_every=0):
+def dam_break(shape="quadratic", transfer="usl", barrier=True, balance_every=0,
+              balance_by="work", balance_threshold=0.1):
     """BENCHMARKS.md scene 4 set-up (thesis §8.4): 4 x 2 column behind a gate removed at
     t = 0, slip walls, a barrier at x = 6 inside a grid extended to x = 8."""
     sc = Scene(2, grid=dict(origin=[0, 0], length=[8, 8], cells=[24, 24]),
                time=dict(end=2.0, dt=1e-3), gravity=[0, -9.81],
                mpm=dict(shape=shape, transfer=transfer),
-               parallel=dict(axis="x", balance_every=balance_every))
+               parallel=dict(axis="x", balance_every=balance_every, balance_by=balance_by,
+                             balance_threshold=balance_threshold))
     sc.material("water", model="tait", rho=997.5, kappa=2e6, gamma=7.0, mu=0.01)
     sc.body(name="water", material="water", shape="box", min=[0, 0], max=[4, 2], ppc=2)
     for face in ("x-", "x+", "y-", "y+"):

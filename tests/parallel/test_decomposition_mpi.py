@@ -60,7 +60,10 @@ def test_migration_conserves_count_mass_momentum_and_gids():
                                           (dam_break, {}), (dam_break, {"shape": "cubic",
                                                                          "transfer": "musl"}),
                                           (loaded_bar, {}),
-                                          (loaded_bar, {"shape": "cpdi", "transfer": "musl"})])
+                                          (loaded_bar, {"shape": "cpdi", "transfer": "musl"}),
+                                          (dam_break, {"balance_every": 20,
+                                                       "balance_by": "time",
+                                                       "balance_threshold": 0.03})])
 def test_state_after_200_steps_equals_one_rank(scene, kwargs):
     dist = world()
     sim = scene(**kwargs).simulation(dist=dist)

@@ -1,0 +1,26 @@
+"""Load balancing by measured time (`[parallel] balance_by = "time"`): the modelled work of
+each layer is scaled by its owner's measured seconds per work unit, so a rank that runs
+slower per particle is given fewer layers."""
+import numpy as np
+import pytest
+
+from pmpmsph.parallel.balance import balanced_faces, calibrated_work, imbalance
+
+
+def test_calibration_reproduces_the_measured_times_and_moves_the_face():
+    work = np.ones(10)
+    faces = np.array([0, 5, 10])
+    busy = [2.0, 1.0]  # rank 0 took twice as long for the same modelled work
+    scaled = calibrated_work(faces, work, busy)
+    np.testing.assert_allclose([scaled[:5].sum(), scaled[5:].sum()], busy)
+    assert imbalance(faces, scaled) == pytest.approx(2.0 / 1.5 - 1.0)
+    new = balanced_faces(scaled, 2, 1)
+    assert new[1] == 4  # 4 layers x 0.4 s against 1 x 0.4 + 5 x 0.2: 1.6 s / 1.4 s
+    assert imbalance(new, scaled) < imbalance(faces, scaled)
+
+
+def test_a_rank_without_work_takes_the_mean_rate():
+    work = np.array([0.0, 0.0, 3.0, 3.0])
+    faces = np.array([0, 2, 4])
+    scaled = calibrated_work(faces, work, [0.0, 6.0])
+    np.testing.assert_allclose(scaled, [0.0, 0.0, 3.0, 3.0])
