@@ -164,8 +164,12 @@ class Simulation:
 
     # -- time step --------------------------------------------------------------------------
     def signal_speed(self):
+        """Global max (c + |v|): from the MPM step's G2P when that saw the final state
+        (pure MPM, no prescribed velocities, not USF), else a pass over the particles."""
         p = self.particles
         n = p.n_owned
+        if self._fused_signal[0] == self.step_count:
+            return self.dist.max(self._fused_signal[1])
         if self.mpm is None and self.sph is not None:
             c = self.sph.signal_speed()
             if c is not None:
@@ -298,6 +302,9 @@ class Simulation:
                 self.coupling.prepare()
         if self.mpm is not None:
             bad = self.mpm.step(self.dt, self.time)
+            if (self.mpm.signal is not None and self.sph is None
+                    and self.prescribed is None):
+                self._fused_signal = (self.step_count + 1, self.mpm.signal)
         if self.coupling is not None:
             self.coupling.after_mpm()
         if self.sph is not None:
@@ -472,6 +479,7 @@ class Simulation:
     case_overrides = ()
     case_dir = None
     _last_checkpoint_step = -1
+    _fused_signal = (-1, 0.0)  # (step it belongs to, local max (c + |v|) from G2P)
     _busy_mark = 0.0  # compute seconds at the last load-balance check (balance_by = "time")
 
     def checkpoint_path(self, name="checkpoint.h5"):

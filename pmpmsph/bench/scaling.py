@@ -97,8 +97,13 @@ def _launcher():
     return os.environ.get("PMPMSPH_MPIRUN", os.path.join(root, "scripts", "mpirun") + " -n")
 
 
-def _worker_cmd(ranks, particles, steps, path):
-    return [*_launcher().split(), str(ranks), sys.executable, "-m", "pmpmsph.bench",
+def _worker_cmd(ranks, particles, steps, path, unbound=False):
+    """The worker's command line; `unbound` (co-runs under this machine's mpirun): each
+    `mpirun -n 1` would bind its rank to the first core, so two of them would share it."""
+    launcher = _launcher().split()
+    if unbound and "PMPMSPH_MPIRUN" not in os.environ:
+        launcher = launcher[:-1] + ["--bind-to", "none"] + launcher[-1:]
+    return [*launcher, str(ranks), sys.executable, "-m", "pmpmsph.bench",
             "scaling-worker", "--particles", str(particles), "--steps", str(steps),
             "--json", path]
 
@@ -107,9 +112,9 @@ def corun(particles, steps, out):
     """Half the scene on one rank alone, then two copies at once (see the module doc)."""
     half = particles // 2
     alone = os.path.join(out, "corun_alone.json")
-    subprocess.run(_worker_cmd(1, half, steps, alone), check=True)
+    subprocess.run(_worker_cmd(1, half, steps, alone, unbound=True), check=True)
     paths = [os.path.join(out, f"corun_{k}.json") for k in range(2)]
-    procs = [subprocess.Popen(_worker_cmd(1, half, steps, p)) for p in paths]
+    procs = [subprocess.Popen(_worker_cmd(1, half, steps, p, unbound=True)) for p in paths]
     if any(p.wait() != 0 for p in procs):
         raise RuntimeError("a co-run worker failed")
     walls = []

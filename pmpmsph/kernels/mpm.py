@@ -8,7 +8,7 @@ single-velocity-field MPM, one field per body for multi-field contact.
 import numpy as np
 
 from ..jit import njit
-from ..materials.dispatch import compute_stress_tagged
+from ..materials.dispatch import compute_stress_tagged, wave_speed
 from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 
@@ -238,8 +238,11 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
     Kinematics: v_p <- flip (v_p + sum N dv) + (1 - flip) sum N v_new (FLIP/PIC blend),
     x_p <- x_p + dt sum N v_new. Deformation: L = sum v_new (x) grad N, F <- (I + dt L) F
     (eq. 82), vol = det F vol0 (eq. 85), sigma from the material (eq. 86) plus any pre-stress.
-    L is evaluated at the position before this step's move. Returns the index of the first
-    particle that left the box [lo, hi], became NaN or inverted (det F <= 0), or -1.
+    L is evaluated at the position before this step's move. Returns (bad, signal): bad is
+    the index of the first particle that left the box [lo, hi], became NaN or inverted
+    (det F <= 0), or -1; signal is max_p (c_p + |v_p|) of the CFL condition at the new J and
+    the velocity after this pass, computed with F (0 without; the same numbers as
+    `kernels.diagnostics.max_signal_speed`, without another pass over F).
     Passing `gdv = None` skips the kinematics, `F = None` the deformation (USF/MUSL passes);
     `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`); `Fdom` is the
     deformation gradient shaping CPDI domains (the same array as `F` when that is updated
@@ -262,6 +265,7 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
     n = x.shape[0]
     fld = 0
     bad = -1
+    signal = 0.0
     for p in range(n):
         if pfield is not None:
             fld = pfield[p]
@@ -372,6 +376,12 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
             if Fdom is not None and bad < 0 and cpdi_reach(dim, Fn, lp, p) > max_reach:
                 bad = p
             mi = mat[p]
+            speed = v[p, 0] * v[p, 0]
+            for a in range(1, dim):
+                speed += v[p, a] * v[p, a]
+            c = wave_speed(mtypes[mi], mparams[mi], J) + np.sqrt(speed)
+            if not (c <= signal):  # NaN propagates (no finite dt from a broken state)
+                signal = c
             compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi], sig)
             if prestress is not None:
                 for a in range(3):
@@ -381,4 +391,4 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
                 for a in range(3):
                     for b in range(3):
                         sigma[p, a, b] = sig[a, b]
-    return bad
+    return bad, signal

@@ -133,7 +133,16 @@ def wave_speed(mtype, par, J):
     """Longitudinal (solids) or sound (fluid) speed at the current J, see the module doc."""
     rho0 = par[2]
     if mtype == TAIT_FLUID:
-        return np.sqrt(par[0] * par[1] / rho0 * np.exp((1.0 - par[1]) * np.log(J)))
+        # c^2 = kappa gamma / rho0 J^(1 - gamma); the usual exponents by multiplication (this
+        # runs per particle per step for the CFL time step; exp/log cost most of that pass)
+        gamma = par[1]
+        if gamma == 7.0:
+            r = 1.0 / J
+            r2 = r * r
+            return np.sqrt(par[0] * 7.0 / rho0 * (r2 * r2 * r2))
+        if gamma == 1.0:
+            return np.sqrt(par[0] / rho0)
+        return np.sqrt(par[0] * gamma / rho0 * np.exp((1.0 - gamma) * np.log(J)))
     if mtype == LINEAR_ELASTIC or mtype == STVK or mtype == NEO_HOOKEAN:
         lam = par[0]
         mu = par[1]

@@ -57,6 +57,7 @@ class MPMStage:
         # rows [0, n_p2g) take part in P2G and [0, n_g2p) are updated by G2P; None: all
         # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone)
         self.n_p2g = self.n_g2p = None
+        self.signal = None  # max (c + |v|) after the last step, from G2P (see `step`)
 
     @property
     def n_p2g(self):
@@ -81,7 +82,9 @@ class MPMStage:
         self.grid = Grid(self.case.grid, nfields=self.nfields, with_normals=self.multi,
                          node_range=(decomposition.axis, lo, hi))
         self.bcs = GridBoundaries(self.case.boundaries, self.grid)
+        sent = self.halo.bytes_sent if hasattr(self, "halo") else 0  # a run's total
         self.halo = GridHalo(decomposition, self.grid)
+        self.halo.bytes_sent = sent
 
     @contextmanager
     def detached(self):
@@ -181,12 +184,17 @@ class MPMStage:
         g, p = self.grid, self.p
         n, lp, _, pfield, pre, mstate = self._optional(self.n_g2p)
         with self.timers.phase("g2p"):
-            return g2p(*self.tags, self.mat_tag, p["x"][:n], p["v"][:n],
+            bad, signal = g2p(*self.tags, self.mat_tag, p["x"][:n], p["v"][:n],
                        p["F"][:n] if deformation else None, p["sigma"][:n], p["vol"][:n],
                        p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n],
                        self.mtypes, self.mparams, mstate, pre, g.vel,
                        g.dv if kinematics else None, g.node0, g.offset, g.inv_dx, g.strides,
                        dt, self.flip, g.lo, g.hi, float(self.case.mpm.cpdi_reach))
+        # max (c + |v|) of the owned rows, valid when this pass has the final velocities
+        # too: USL's single pass and MUSL's second; after USF's first pass v changes again
+        if deformation and (kinematics or self.transfer == "musl"):
+            self.signal = signal
+        return bad
 
     def sort_by_cell(self):
         """Reorder owned particles by grid cell so P2G/G2P walk memory in grid order."""
@@ -195,7 +203,9 @@ class MPMStage:
         p.take(np.argsort(keys, kind="stable"))
 
     def step(self, dt, time):
-        """Advance owned MPM particles by dt; returns the index of a failed particle or -1."""
+        """Advance owned MPM particles by dt; returns the index of a failed particle or -1.
+        Leaves `signal` = max (c + |v|) over the owned particles after the step (or None)."""
+        self.signal = None
         if self.transfer == "usl":
             self._p2g(True, dt)
             self._solve(dt, time, True)
