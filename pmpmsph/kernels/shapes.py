@@ -21,6 +21,7 @@ import numpy as np
 from numba.extending import overload
 
 from ..jit import njit
+from ..materials.tensor import cofactor3
 
 LINEAR, GIMP, QUADRATIC, CUBIC, CPDI = 0, 1, 2, 3, 4
 SHAPE_CODES = {"linear": LINEAR, "gimp": GIMP, "quadratic": QUADRATIC, "cubic": CUBIC,
@@ -208,15 +209,8 @@ def cpdi_domain(dim, F, lp, p, dom):
         dom[1, 1, 1] = a * inv_det / lp[p, 1]
     else:
         f = F[p]
-        c00 = f[1, 1] * f[2, 2] - f[1, 2] * f[2, 1]  # cofactors: F^-T = cof(F) / det F
-        c01 = f[1, 2] * f[2, 0] - f[1, 0] * f[2, 2]
-        c02 = f[1, 0] * f[2, 1] - f[1, 1] * f[2, 0]
-        c10 = f[0, 2] * f[2, 1] - f[0, 1] * f[2, 2]
-        c11 = f[0, 0] * f[2, 2] - f[0, 2] * f[2, 0]
-        c12 = f[0, 1] * f[2, 0] - f[0, 0] * f[2, 1]
-        c20 = f[0, 1] * f[1, 2] - f[0, 2] * f[1, 1]
-        c21 = f[0, 2] * f[1, 0] - f[0, 0] * f[1, 2]
-        c22 = f[0, 0] * f[1, 1] - f[0, 1] * f[1, 0]
+        # F^-T = cof(F) / det F
+        c00, c01, c02, c10, c11, c12, c20, c21, c22 = cofactor3(f)
         inv_det = 1.0 / (f[0, 0] * c00 + f[0, 1] * c01 + f[0, 2] * c02)
         dom[1, 0, 0] = c00 * inv_det / lp[p, 0]
         dom[1, 0, 1] = c01 * inv_det / lp[p, 1]

@@ -81,7 +81,7 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.dispatch import compute_stress, strain_energy
-from ..materials.tensor import det3
+from ..materials.tensor import cofactor3, det3
 from .sph_kernels import kernel_dwdr, kernel_w
 
 __all__ = ["kernel_correction", "corrected_kernel_values", "fd_kernel_gradient",
@@ -402,17 +402,8 @@ def first_piola(F, sigma, P):
     """``P_a = J_a sigma_a F_a^-T`` (first Piola-Kirchhoff stress), for the total-Lagrangian
     form of eq. 5 with reference-configuration pairs (see the module docstring)."""
     for a in range(F.shape[0]):
-        f = F[a]
         # J F^-T is the cofactor matrix of F
-        c00 = f[1, 1] * f[2, 2] - f[1, 2] * f[2, 1]
-        c01 = f[1, 2] * f[2, 0] - f[1, 0] * f[2, 2]
-        c02 = f[1, 0] * f[2, 1] - f[1, 1] * f[2, 0]
-        c10 = f[0, 2] * f[2, 1] - f[0, 1] * f[2, 2]
-        c11 = f[0, 0] * f[2, 2] - f[0, 2] * f[2, 0]
-        c12 = f[0, 1] * f[2, 0] - f[0, 0] * f[2, 1]
-        c20 = f[0, 1] * f[1, 2] - f[0, 2] * f[1, 1]
-        c21 = f[0, 2] * f[1, 0] - f[0, 0] * f[1, 2]
-        c22 = f[0, 0] * f[1, 1] - f[0, 1] * f[1, 0]
+        c00, c01, c02, c10, c11, c12, c20, c21, c22 = cofactor3(F[a])
         for i in range(3):
             s0 = sigma[a, i, 0]
             s1 = sigma[a, i, 1]

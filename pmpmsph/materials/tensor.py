@@ -22,6 +22,20 @@ def det3(A):
             + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
 
 
+@njit(inline="always")
+def cofactor3(f):
+    """The cofactor matrix cof(F) = det(F) F^-T of a 3x3 array, row by row (9 scalars)."""
+    return (f[1, 1] * f[2, 2] - f[1, 2] * f[2, 1],
+            f[1, 2] * f[2, 0] - f[1, 0] * f[2, 2],
+            f[1, 0] * f[2, 1] - f[1, 1] * f[2, 0],
+            f[0, 2] * f[2, 1] - f[0, 1] * f[2, 2],
+            f[0, 0] * f[2, 2] - f[0, 2] * f[2, 0],
+            f[0, 1] * f[2, 0] - f[0, 0] * f[2, 1],
+            f[0, 1] * f[1, 2] - f[0, 2] * f[1, 1],
+            f[0, 2] * f[1, 0] - f[0, 0] * f[1, 2],
+            f[0, 0] * f[1, 1] - f[0, 1] * f[1, 0])
+
+
 @njit(fastmath=False, inline="always")
 def det_minus_one(F):
     """J - 1 = det(F) - 1 without cancellation: with H = F - I,
