@@ -391,8 +391,8 @@ class Simulation:
                 cause = "NaN in position or deformation gradient"
             elif not J > 0:
                 cause = f"det F = {J:.3g} <= 0 (inverted material)"
-            elif self.mpm is not None and self.mpm.domain_failure(bad):
-                cause = self.mpm.domain_failure(bad)
+            elif self.mpm is not None and (domain := self.mpm.domain_failure(bad)):
+                cause = domain
             else:
                 where = "grid" if self.case.grid else "domain"
                 cause = f"left the {where} at x = {np.round(x, 6).tolist()}"

@@ -13,6 +13,16 @@ import time
 import numpy as np
 
 
+def _timed_step(sim, on_step):
+    """One `sim.step()`, then `on_step(sim)` if given; the seconds spent in the step."""
+    t0 = time.perf_counter()
+    sim.step()
+    spent = time.perf_counter() - t0
+    if on_step is not None:
+        on_step(sim)
+    return spent
+
+
 def advance(sim, end, on_step=None):
     """Step `sim` to time `end` (the last step shortened to land on it); `on_step(sim)`
     after every step. Returns the seconds this rank spent in `sim.step` alone."""
@@ -20,24 +30,13 @@ def advance(sim, end, on_step=None):
     while sim.time < end - 1e-6 * sim.dt:
         if sim.time + sim.dt > end:
             sim.dt = end - sim.time
-        t0 = time.perf_counter()
-        sim.step()
-        spent += time.perf_counter() - t0
-        if on_step is not None:
-            on_step(sim)
+        spent += _timed_step(sim, on_step)
     return spent
 
 
 def steps_for(sim, n, on_step=None):
     """Exactly `n` steps (fixed-step scenes such as the reversal); seconds in `step`."""
-    spent = 0.0
-    for _ in range(n):
-        t0 = time.perf_counter()
-        sim.step()
-        spent += time.perf_counter() - t0
-        if on_step is not None:
-            on_step(sim)
-    return spent
+    return sum(_timed_step(sim, on_step) for _ in range(n))
 
 
 def gathered(sim, names):

@@ -1,7 +1,7 @@
 """Time-integration kernels of the SPH stages (DESIGN.md §3, step 4): the stage update
 shared by Euler, predictor-corrector and TVD-RK3 (`advance`), the velocity-Verlet pieces
-(`kick`, `drift`, `cayley_update`), and the per-step checks (`max_signal`,
-`first_outside`). Only owned SPH rows move: walls and MPM points are left alone.
+(`add_scaled` for the kick and the drift, `cayley_update`), and the per-step checks
+(`max_signal`, `first_outside`). Only owned SPH rows move: walls and MPM points are left alone.
 """
 import numpy as np
 
@@ -57,23 +57,13 @@ def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, 
 
 
 @njit
-def kick(dim_tag, n, method, dt_half, v, acc):
-    """Velocity Verlet kick v += dt/2 acc on owned SPH rows."""
+def add_scaled(dim_tag, n, method, c, y, f):
+    """y += c f on owned SPH rows: Verlet's kick (v += dt/2 acc) and drift (x += dt v)."""
     dim = len(dim_tag)
     for a in range(n):
         if method[a] == SPH:
             for d in range(dim):
-                v[a, d] += dt_half * acc[a, d]
-
-
-@njit
-def drift(dim_tag, n, method, dt_half, x, v):
-    """Half a drift x += dt/2 v on owned SPH rows."""
-    dim = len(dim_tag)
-    for a in range(n):
-        if method[a] == SPH:
-            for d in range(dim):
-                x[a, d] += dt_half * v[a, d]
+                y[a, d] += c * f[a, d]
 
 
 @njit

@@ -20,7 +20,7 @@ import numpy as np
 from ..kernels.neighbours import moved_beyond, neighbour_lists
 from ..kernels.sph import (artificial_stress, pair_stress, sound_speeds, sph_rates,
                            sph_stress, sync_ghost_velocity, wall_state)
-from ..kernels.sph_integrate import (advance, cayley_update, drift, first_outside, kick,
+from ..kernels.sph_integrate import (add_scaled, advance, cayley_update, first_outside,
                                      max_signal)
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..particles import FieldSpec
@@ -269,8 +269,7 @@ class SPHStage:
             n = 0
             if "x_n" in p:
                 self._advance(0.0, 1.0, 0.0, save=True)
-            kick(self.dim_tag, n, p["method"], 0.0, p["v"], p["acc"])
-            drift(self.dim_tag, n, p["method"], 0.0, p["x"], p["v"])
+            add_scaled(self.dim_tag, n, p["method"], 0.0, p["v"], p["acc"])
             cayley_update(self.dim_tag, n, p["method"], 0.0, p["rho"], p["F"], p["drho"],
                           p["L"])
             first_outside(self.dim, n, p["x"], self.lo, self.hi)
@@ -305,16 +304,16 @@ class SPHStage:
         if self.integrator == "verlet":
             tag, meth = self.dim_tag, p["method"]
             with self.timers.phase("integrate"):
-                kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
-                drift(tag, n, meth, 0.5 * dt, p["x"], p["v"])
+                add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
+                add_scaled(tag, n, meth, 0.5 * dt, p["x"], p["v"])  # drift
             self.kinematics()
             with self.timers.phase("integrate"):
                 cayley_update(tag, n, meth, dt, p["rho"], p["F"], p["drho"], p["L"])
-                drift(tag, n, meth, 0.5 * dt, p["x"], p["v"])
+                add_scaled(tag, n, meth, 0.5 * dt, p["x"], p["v"])  # drift
             bad = self.stress(dt, m0)
             self.evaluate()
             with self.timers.phase("integrate"):
-                kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
+                add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
         elif self.integrator == "predictor_corrector":
             self._advance(0.0, 1.0, 0.5 * dt, save=True)  # predictor with the last rates
             self.stress(0.5 * dt, m0)

@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import RunError
 from ..kernels.neighbours import neighbour_lists
 from ..kernels.sph import sph_stress_all
-from ..kernels.sph_integrate import drift, first_outside, kick
+from ..kernels.sph_integrate import add_scaled, first_outside
 from ..kernels.sph_kernels import SUPPORT
 from ..kernels.tlsph import (deformation_gradient, first_piola, internal_force,
                              kernel_correction, velocity_gradient)
@@ -188,8 +188,7 @@ class TLSPHStage(SPHStage):
             self.evaluate(0.0)
             if "x_n" in p:
                 self._advance(0.0, 1.0, 0.0, save=True)
-            kick(self.dim_tag, 0, p["method"], 0.0, p["v"], p["acc"])
-            drift(self.dim_tag, 0, p["method"], 0.0, p["x"], p["v"])
+            add_scaled(self.dim_tag, 0, p["method"], 0.0, p["v"], p["acc"])
             first_outside(self.dim, 0, p["x"], self.lo, self.hi)
         finally:
             self.halo_enabled = True
@@ -209,11 +208,11 @@ class TLSPHStage(SPHStage):
         if self.integrator == "verlet":
             tag, meth = self.dim_tag, p["method"]
             with self.timers.phase("integrate"):
-                kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
-                drift(tag, n, meth, dt, p["x"], p["v"])
+                add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
+                add_scaled(tag, n, meth, dt, p["x"], p["v"])  # drift
             self.evaluate(dt)
             with self.timers.phase("integrate"):
-                kick(tag, n, meth, 0.5 * dt, p["v"], p["acc"])
+                add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
         elif self.integrator == "predictor_corrector":
             self._advance(0.0, 1.0, 0.5 * dt, save=True)
             self.evaluate(0.5 * dt)
