@@ -220,7 +220,8 @@ class SPHStage:
         """Fluid bodies start at rest in the hydrostatic state below their top (along g):
         integrating dp/dz = rho(p) |g| with the Tait law rho = rho0 (1 + p/kappa)^(1/gamma)
         (seed 003, eq. 50) from p = 0 at the top gives, at depth z,
-            rho = rho0 (1 + (gamma - 1)/gamma rho0 |g| z/kappa)^(1/(gamma - 1)).
+            rho = rho0 (1 + (gamma - 1)/gamma rho0 |g| z/kappa)^(1/(gamma - 1)),
+        and rho = rho0 exp(rho0 |g| z/kappa) for gamma = 1 (the limit).
         The top is the body's highest particle plus half a spacing (a flat surface).
         Without it a column seeded at rho0 drops by its compression and rings
         (cases/sph_hydrostatic.toml). Applied once, at the first step from t = 0."""
@@ -245,9 +246,12 @@ class SPHStage:
                 continue
             top += 0.5 * self.spec.spacing
             kappa, gamma, rho0 = self.mparams[mi, 0], self.mparams[mi, 1], self.mparams[mi, 2]
-            z = top - height[mine]
-            p["rho"][:n][mine] = rho0 * (1.0 + (gamma - 1.0) / gamma * rho0 * g * z
-                                         / kappa) ** (1.0 / (gamma - 1.0))
+            s = rho0 * g * (top - height[mine]) / kappa
+            if gamma == 1.0:
+                p["rho"][:n][mine] = rho0 * np.exp(s)
+            else:
+                p["rho"][:n][mine] = rho0 * np.exp(np.log1p((gamma - 1.0) / gamma * s)
+                                                   / (gamma - 1.0))
 
     def initialise(self):
         """Stress from the initial state, then the first rates (before step 1)."""

@@ -89,3 +89,14 @@ def test_pressure_floor_removes_tension():
     sim2.sph.stress(0.0, np.zeros((p2.n_owned, 0)))
     expect = KAPPA * ((0.99) ** GAMMA - 1.0)     # -9.3 kPa of tension without the floor
     assert np.allclose(-p2["sigma"][_water(sim2), 1, 1], expect, rtol=1e-12)
+
+
+def test_hydrostatic_start_with_gamma_one_is_exponential():
+    """gamma = 1 (p = kappa (rho/rho0 - 1)): dp/dz = rho g gives rho = rho0 exp(rho0 g z/kappa);
+    the general formula's exponent 1/(gamma - 1) has no value there."""
+    sim = _column(**{"sph.hydrostatic": True, "materials.water.gamma": 1.0})
+    p, w = sim.particles, _water(sim)
+    sim.sph.hydrostatic_start()
+    z = H - p["x"][w, 1]
+    assert np.allclose(p["rho"][w], RHO0 * np.exp(RHO0 * G * z / KAPPA), rtol=1e-13)
+    assert p["rho"][w].max() > RHO0 * (1.0 + 0.5 * RHO0 * G * z.max() / KAPPA)
