@@ -2,7 +2,7 @@
 import numpy as np
 
 from .errors import ConfigError
-from .particles import FieldSpec, ParticleSet
+from .particles import F_FIELD, J_FIELD, FieldSpec, ParticleSet
 from .physics.loads import PrescribedVelocity, TractionLoads, _in_region
 from .physics.mpm import MPMStage
 from .physics.sph import SPHStage
@@ -97,6 +97,7 @@ def build_particles(case, keep=None):
     """
     dim = case.dim
     ps = ParticleSet(dim)
+    ps.declare(J_FIELD if case.tracks_J_only else F_FIELD)
     if case.has_mpm:
         for spec in MPMStage.fields(case):
             ps.declare(spec)

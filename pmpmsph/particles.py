@@ -31,9 +31,14 @@ CORE_FIELDS = (
     FieldSpec("mass", (), halo=True, output=True),
     FieldSpec("vol0", ()),
     FieldSpec("vol", (), halo=True, output=True),
-    FieldSpec("F", (3, 3), halo=True, output=True, fill="identity"),
     FieldSpec("sigma", (3, 3), halo=True, output=True),
 )
+
+#: the motion a particle stores: the full deformation gradient F, or, in scenes where every
+#: particle is a fluid (`Case.tracks_J_only`), only J = det F: 8 bytes instead of 72, which
+#: G2P reads and writes every step
+F_FIELD = FieldSpec("F", (3, 3), halo=True, output=True, fill="identity")
+J_FIELD = FieldSpec("J", (), halo=True, output=True, fill=1.0)
 
 
 class ParticleSet:
@@ -81,6 +86,12 @@ class ParticleSet:
         from dataclasses import replace
 
         self.specs[name] = replace(self.specs[name], halo=True)
+
+    def deformation(self, n=None):
+        """F (n, 3, 3) or, in a J-only scene, J (n,) over the rows [0, n) (default: owned);
+        the kernels that read either take this array (see `kernels.diagnostics.jacobian`)."""
+        arr = self.arrays["F"] if "F" in self.arrays else self.arrays["J"]
+        return arr[: self.n_owned if n is None else n]
 
     def __contains__(self, name):
         return name in self.arrays

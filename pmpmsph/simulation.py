@@ -13,6 +13,7 @@ import numpy as np
 
 from .build import build_particles, material_arrays, sph_stage_class
 from .errors import ConfigError, RunError
+from .kernels.deformation import jacobian
 from .kernels.diagnostics import max_signal_speed, particle_sums
 from .materials.dispatch import material_tag
 from .parallel.decomposition import Decomposition
@@ -152,9 +153,10 @@ class Simulation:
                 self.mpm.n_p2g = self.mpm.n_g2p = None
             mtypes, mparams = self.materials
             mstate = p["mstate"] if "mstate" in p else np.zeros((0, 0))
-            particle_sums(self.dim, p["x"], p["v"], p["mass"], p["vol0"], p["F"], p["mat"],
-                          mtypes, mparams, mstate, self.gravity, self._sums, self._mtag)
-            max_signal_speed(self.dim, p["v"], p["F"], p["mat"], mtypes, mparams)
+            particle_sums(self.dim, p["x"], p["v"], p["mass"], p["vol0"], p.deformation(),
+                          p["mat"], mtypes, mparams, mstate, self.gravity, self._sums,
+                          self._mtag)
+            max_signal_speed(self.dim, p["v"], p.deformation(), p["mat"], mtypes, mparams)
             if self.decomposition is not None:
                 dec = self.decomposition
                 slab_leavers(p["x"], dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells,
@@ -175,7 +177,8 @@ class Simulation:
             if c is not None:
                 return self.dist.max(c)
         mtypes, mparams = self.materials
-        c = max_signal_speed(self.dim, p["v"][:n], p["F"][:n], p["mat"][:n], mtypes, mparams)
+        c = max_signal_speed(self.dim, p["v"][:n], p.deformation(n), p["mat"][:n], mtypes,
+                             mparams)
         return self.dist.max(c)
 
     def stable_dt(self):
@@ -259,7 +262,7 @@ class Simulation:
         mtypes, mparams = self.materials
         mstate = p["mstate"][:n] if "mstate" in p else np.zeros((n, 0))
         particle_sums(self.dim, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol0"][:n],
-                      p["F"][:n], p["mat"][:n], mtypes, mparams, mstate, self.gravity,
+                      p.deformation(n), p["mat"][:n], mtypes, mparams, mstate, self.gravity,
                       self._sums, self._mtag)
         s = self.dist.sum(self._sums.copy())
         k, u, pot = s[0], s[1], s[2]
@@ -386,7 +389,7 @@ class Simulation:
         if bad >= 0:
             gid = int(p["gid"][bad])
             x = p["x"][bad]
-            J = np.linalg.det(p["F"][bad])
+            J = float(jacobian(p.deformation(), bad))
             if not np.all(np.isfinite(x)) or not np.isfinite(J):
                 cause = "NaN in position or deformation gradient"
             elif not J > 0:

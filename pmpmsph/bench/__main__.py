@@ -31,6 +31,8 @@ def main(argv=None):
     sc.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     sc.add_argument("--particles", type=int, default=500_000)
     sc.add_argument("--steps", type=int, default=100)
+    sc.add_argument("--repeat", type=int, default=3,
+                    help="rounds over the rank counts; each count's best round is tabulated")
     sc.add_argument("--out", default="bench_results")
     sc.add_argument("--output-every", type=int, default=0,
                     help="also write a snapshot every N steps (output phase)")
@@ -74,7 +76,8 @@ def main(argv=None):
     if args.command == "scaling":
         from .scaling import run
 
-        run(args.ranks, args.particles, args.steps, args.out, args.output_every)
+        run(args.ranks, args.particles, args.steps, args.out, args.output_every,
+            repeat=args.repeat)
         if args.corun:
             from .scaling import corun
 

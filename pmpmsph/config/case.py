@@ -46,6 +46,9 @@ class MPMSpec:
     contact: str = "single"    # single velocity field, or one per body (Bardenhagen)
     friction: float = 0.0      # Coulomb coefficient of multi-field contact
     cpdi_reach: int = 2        # CPDI: the largest domain half-extent (cells) the grid covers
+    deformation: str = "auto"  # what an MPM particle stores of its motion: "F" (the full
+    # deformation gradient) or "J" (its determinant only; enough for fluids, whose stress
+    # depends on J and the velocity gradient); "auto": J when every MPM material is a fluid
 
 
 @dataclass(frozen=True)
@@ -221,6 +224,17 @@ class Case:
     @property
     def coupled(self):
         return self.has_mpm and self.has_sph
+
+    @property
+    def tracks_J_only(self):
+        """True when particles carry J = det F instead of F (`mpm.deformation`): a pure-MPM
+        scene of fluids (Tait), any shape but CPDI, whose domains F shapes."""
+        if self.mpm.deformation == "F" or self.has_sph or self.mpm.shape == "cpdi":
+            return False
+        if self.mpm.deformation == "J":
+            return True
+        used = {b.material for b in self.bodies}
+        return all(self.materials[m].model == "tait_fluid" for m in used)
 
     def material_names(self):
         return list(self.materials)

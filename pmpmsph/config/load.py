@@ -405,6 +405,7 @@ def case_from_dict(data, name="case", text=""):
         contact=mpm_t.string("contact", "single", choices=CONTACTS),
         friction=mpm_t.number("friction", 0.0, min=0.0),
         cpdi_reach=mpm_t.number("cpdi_reach", 2, integer=True, min=1, max=8),
+        deformation=mpm_t.string("deformation", "auto", choices=("auto", "F", "J")),
     )
     if mpm_t.has("cpdi_reach") and mpm.shape != "cpdi":
         raise ConfigError(mpm_t.key("cpdi_reach"), "applies to shape = \"cpdi\" only")
@@ -504,7 +505,15 @@ def case_from_dict(data, name="case", text=""):
                             balance_by=pt.string("balance_by", "work", choices=("work", "time")))
     pt.finish()
     root.finish()
-    return Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
+    case = Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
                 boundaries=boundaries, loads=loads, prescribed=prescribed, gravity=gravity,
                 time=TimeSpec(end, dt, cfl), output=output, parallel=parallel, sph=sph,
                 domain=domain, regions=regions, coupling=coupling, text=text)
+    if mpm.deformation == "J" and not case.tracks_J_only:
+        raise ConfigError("mpm.deformation", "J alone describes fluids only: it needs a pure-MPM "
+                          "scene (no SPH), a shape other than cpdi and only fluid materials")
+    if mpm.deformation == "J" and any(materials[b.material].model != "tait_fluid"
+                                      for b in bodies):
+        raise ConfigError("mpm.deformation", "J alone describes fluids only, but a body uses a "
+                          "solid material")
+    return case

@@ -13,6 +13,7 @@ import numpy as np
 from numba.extending import overload
 
 from ..jit import njit
+from .deformation import deformation_matrix, jacobian
 from ..materials.dispatch import strain_energy, wave_speed
 from ..materials.elastic import (energy_hartmann_neff, energy_linear_elastic,
                                  energy_neo_hookean, energy_stvk)
@@ -53,9 +54,11 @@ def particle_sums(dim, x, v, mass, vol0, F, mat, mtypes, mparams, mstate, gravit
                   mtag=()):
     """out[:] = (K, U, P, px, py, pz, mass): this rank's owned-particle sums.
 
+    `F`: the stored motion, F (n, 3, 3) or J (n,) (`ParticleSet.deformation`).
     `mtag`: `material_tag` of the materials present (() for a mix: runtime switch)."""
     for k in range(out.shape[0]):
         out[k] = 0.0
+    scratch = np.eye(3)
     for p in range(x.shape[0]):
         m = mass[p]
         v2 = 0.0
@@ -66,7 +69,8 @@ def particle_sums(dim, x, v, mass, vol0, F, mat, mtypes, mparams, mstate, gravit
             out[3 + a] += m * v[p, a]
         out[0] += 0.5 * m * v2
         mi = mat[p]
-        out[1] += (strain_energy_tagged(mtag, mtypes[mi], F[p], mstate[p], mparams[mi])
+        Fp = deformation_matrix(F, p, scratch)
+        out[1] += (strain_energy_tagged(mtag, mtypes[mi], Fp, mstate[p], mparams[mi])
                    * vol0[p])
         out[2] -= m * gx
         out[6] += m
@@ -74,13 +78,11 @@ def particle_sums(dim, x, v, mass, vol0, F, mat, mtypes, mparams, mstate, gravit
 
 @njit
 def max_signal_speed(dim, v, F, mat, mtypes, mparams):
-    """max_p (c_p + |v_p|), the speed in the CFL condition dt = CFL h / max(c + |v|)."""
+    """max_p (c_p + |v_p|), the speed in the CFL condition dt = CFL h / max(c + |v|).
+    `F`: F (n, 3, 3) or J (n,) (`ParticleSet.deformation`)."""
     best = 0.0
     for p in range(v.shape[0]):
-        Fp = F[p]
-        J = (Fp[0, 0] * (Fp[1, 1] * Fp[2, 2] - Fp[1, 2] * Fp[2, 1])
-             - Fp[0, 1] * (Fp[1, 0] * Fp[2, 2] - Fp[1, 2] * Fp[2, 0])
-             + Fp[0, 2] * (Fp[1, 0] * Fp[2, 1] - Fp[1, 1] * Fp[2, 0]))
+        J = jacobian(F, p)
         speed = 0.0
         for a in range(dim):
             speed += v[p, a] * v[p, a]

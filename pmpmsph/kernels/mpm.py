@@ -9,6 +9,7 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.dispatch import compute_stress_tagged, wave_speed
+from .deformation import advance
 from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 
@@ -243,6 +244,7 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
     (det F <= 0), or -1; signal is max_p (c_p + |v_p|) of the CFL condition at the new J and
     the velocity after this pass, computed with F (0 without; the same numbers as
     `kernels.diagnostics.max_signal_speed`, without another pass over F).
+    `F` is the stored motion, F (n, 3, 3) or, in a scene of fluids, J (n,) (`advance`).
     Passing `gdv = None` skips the kinematics, `F = None` the deformation (USF/MUSL passes);
     `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`); `Fdom` is the
     deformation gradient shaping CPDI domains (the same array as `F` when that is updated
@@ -260,7 +262,7 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
     nax = node_counts(dim, strides, gvel.shape[1])
     dom = np.zeros((2, 3, 3))
     L = np.zeros((3, 3))
-    Fn = np.zeros((3, 3))
+    Fn = np.eye(3)  # J storage leaves all but Fn[0, 0] at the identity (`advance`)
     sig = np.zeros((3, 3))
     n = x.shape[0]
     fld = 0
@@ -345,31 +347,7 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
             L[2, 0] = L20
             L[2, 1] = L21
             L[2, 2] = L22
-            # F <- (I + dt L) F, eq. 82, on scalars (no aliasing between small arrays); in
-            # 1D/2D the out-of-plane row and column of F stay those of the identity
-            for b in range(dim):
-                f0 = F[p, 0, b]
-                f1 = F[p, 1, b]
-                f2 = F[p, 2, b]
-                n0 = f0 + dt * (L00 * f0 + L01 * f1 + L02 * f2)
-                n1 = f1 + dt * (L10 * f0 + L11 * f1 + L12 * f2)
-                n2 = f2 + dt * (L20 * f0 + L21 * f1 + L22 * f2)
-                F[p, 0, b] = n0
-                Fn[0, b] = n0
-                if dim > 1:
-                    F[p, 1, b] = n1
-                    Fn[1, b] = n1
-                if dim > 2:
-                    F[p, 2, b] = n2
-                    Fn[2, b] = n2
-            if dim < 3:
-                for a in range(3):
-                    for b in range(dim, 3):
-                        Fn[a, b] = F[p, a, b]
-                        Fn[b, a] = F[p, b, a]
-            J = (Fn[0, 0] * (Fn[1, 1] * Fn[2, 2] - Fn[1, 2] * Fn[2, 1])
-                 - Fn[0, 1] * (Fn[1, 0] * Fn[2, 2] - Fn[1, 2] * Fn[2, 0])
-                 + Fn[0, 2] * (Fn[1, 0] * Fn[2, 1] - Fn[1, 1] * Fn[2, 0]))
+            J = advance(F, p, dim, dt, L, Fn)  # eq. 82 (or J alone, for fluids)
             vol[p] = J * vol0[p]
             if not (J > 0.0) and bad < 0:
                 bad = p
@@ -382,13 +360,13 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
             c = wave_speed(mtypes[mi], mparams[mi], J) + np.sqrt(speed)
             if not (c <= signal):  # NaN propagates (no finite dt from a broken state)
                 signal = c
-            compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi], sig)
             if prestress is not None:
+                compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi],
+                                      sig)
                 for a in range(3):
                     for b in range(3):
                         sigma[p, a, b] = sig[a, b] + prestress[p, a, b]
-            else:
-                for a in range(3):
-                    for b in range(3):
-                        sigma[p, a, b] = sig[a, b]
+            else:  # straight into the particle's row (the models only write their output)
+                compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi],
+                                      sigma[p])
     return bad, signal

@@ -185,7 +185,8 @@ class MPMStage:
         n, lp, _, pfield, pre, mstate = self._optional(self.n_g2p)
         with self.timers.phase("g2p"):
             bad, signal = g2p(*self.tags, self.mat_tag, p["x"][:n], p["v"][:n],
-                       p["F"][:n] if deformation else None, p["sigma"][:n], p["vol"][:n],
+                       p.deformation(n) if deformation else None, p["sigma"][:n],
+                       p["vol"][:n],
                        p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n],
                        self.mtypes, self.mparams, mstate, pre, g.vel,
                        g.dv if kinematics else None, g.node0, g.offset, g.inv_dx, g.strides,

@@ -14,7 +14,7 @@ def test_folded_force_scatter_equals_the_general_update():
     general.mpm.fold_force = False
     folded.run(max_steps=100)
     general.run(max_steps=100)
-    for name in ("x", "v", "F", "sigma"):
+    for name in ("x", "v", "J", "sigma"):  # a fluid scene stores J (`mpm.deformation`)
         a, b = folded.particles[name], general.particles[name]
         scale = np.abs(b).max()
         assert np.abs(a - b).max() <= 1e-10 * scale, name
