@@ -15,7 +15,10 @@ halo exchanges) divided by its modelled work gives its seconds per work unit, ea
 work is scaled by its owner's, and the faces go to the quantiles of that. Ranks that run
 slower per particle (a busier core, worse cache locality) then get fewer particles; the
 imbalance tested against the threshold is the measured one. The faces then depend on
-timings, so runs are no longer bit-for-bit repeatable (only equal to round-off).
+timings, so runs are no longer bit-for-bit repeatable (only equal to round-off). A measured
+imbalance must be seen at two checks in a row, with the same rank the most loaded, before
+faces move: one window's timing noise (a busy spell of the machine) then does not move them
+back and forth, and each move costs a grid rebuild and a migration.
 """
 import numpy as np
 
@@ -75,6 +78,7 @@ class LoadBalancer:
         self.every = every
         self.threshold = threshold
         self.history = []  # (step, imbalance before, imbalance after, faces)
+        self._heaviest = None  # most loaded rank at the last measured check over threshold
 
     def propose(self, dec, x, nodes_per_layer, busy=None):
         """New faces, or None to keep the present ones; collective (all ranks call it).
@@ -85,7 +89,14 @@ class LoadBalancer:
             work = calibrated_work(dec.faces, work, busy)
         before = imbalance(dec.faces, work)
         if before <= self.threshold:
+            self._heaviest = None
             return None, before, before
+        if busy is not None:  # measured: confirm at the next check first (module doc)
+            heaviest = int(np.argmax(rank_work(dec.faces, work)))
+            confirmed = heaviest == self._heaviest
+            self._heaviest = None if confirmed else heaviest
+            if not confirmed:
+                return None, before, before
         faces = balanced_faces(work, dec.size, dec.min_slab)
         after = imbalance(faces, work)
         if np.array_equal(faces, dec.faces) or after > 0.5 * before:

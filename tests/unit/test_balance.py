@@ -24,3 +24,35 @@ def test_a_rank_without_work_takes_the_mean_rate():
     faces = np.array([0, 2, 4])
     scaled = calibrated_work(faces, work, [0.0, 6.0])
     np.testing.assert_allclose(scaled, [0.0, 0.0, 3.0, 3.0])
+
+
+class _Slabs:
+    """The parts of a Decomposition that `LoadBalancer.propose` reads (one process)."""
+
+    def __init__(self, faces, ncells=10):
+        self.faces = np.array(faces)
+        self.size = len(faces) - 1
+        self.ncells = ncells
+        self.min_slab = 1
+        self.dist = self
+
+    def sum(self, a):
+        return a
+
+    def cell_of(self, x):
+        return np.clip(np.floor(x[:, 0]).astype(np.int64), 0, self.ncells - 1)
+
+
+def test_a_measured_imbalance_moves_faces_only_when_seen_twice_in_a_row():
+    from pmpmsph.parallel.balance import LoadBalancer
+
+    dec = _Slabs([0, 5, 10])
+    x = np.repeat(np.arange(10) + 0.5, 100)[:, None]  # 100 particles in each cell layer
+    lb = LoadBalancer(every=25, threshold=0.05)
+    slow_left = [2.0, 1.0]
+    assert lb.propose(dec, x, 0.0, slow_left)[0] is None         # first sighting: wait
+    assert lb.propose(dec, x, 0.0, [1.0, 2.0])[0] is None        # the other rank: noise
+    assert lb.propose(dec, x, 0.0, slow_left)[0] is None         # seen once again
+    faces, before, after = lb.propose(dec, x, 0.0, slow_left)    # twice in a row: move
+    assert faces is not None and faces[1] < 5 and after < 0.5 * before
+    assert lb.propose(dec, x, 0.0, None)[0] is None               # the model: balanced
