@@ -245,7 +245,10 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     spec = SPHSpec(
         kernel=kernel, h=h, spacing=spacing,
         formulation=formulation,
-        correction=t.boolean("correction", True),
+        # kernel correction: Liu's full correction in the total formulation (seed 004 eqs.
+        # 1-3, on by default), the gradient correction of Bonet & Lok in the updated one
+        # (kernels/sph.py `correction_matrices`, off by default)
+        correction=t.boolean("correction", formulation == "total"),
         deformation=t.string("deformation", "reference", choices=("reference", "rate")),
         force=t.string("force", "current", choices=("current", "reference")),
         integrator=integrator, av_alpha=av_alpha, av_beta=av_beta,

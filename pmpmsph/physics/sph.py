@@ -14,14 +14,32 @@ The integrators combine evaluations:
                          (Monaghan's midpoint predictor-corrector, one evaluation per step)
     rk3                  TVD Runge-Kutta of Shu & Osher (seed 004, §5), three evaluations
 and the halo is refreshed at every evaluation.
+
+With `[sph] correction = true` every evaluation (and the mid-step kinematics of verlet)
+first computes the kernel gradient correction B of the owned rows (`correction_matrices`,
+Bonet & Lok; seed 004 §2.1 for the first-order completeness it restores) and, for the
+force, refreshes it in the halo: the rates then use corrected gradients (see `sph_rates`).
 """
 import numpy as np
 
 from ..kernels.neighbours import moved_beyond, neighbour_lists
-from ..kernels.sph import (artificial_stress, pair_stress, sound_speeds, sph_rates,
-                           sph_stress, sync_ghost_velocity, wall_state)
-from ..kernels.sph_integrate import (add_scaled, advance, cayley_update, first_outside,
-                                     max_signal)
+from ..kernels.sph import (
+    artificial_stress,
+    correction_matrices,
+    pair_stress,
+    sound_speeds,
+    sph_rates,
+    sph_stress,
+    sync_ghost_velocity,
+    wall_state,
+)
+from ..kernels.sph_integrate import (
+    add_scaled,
+    advance,
+    cayley_update,
+    first_outside,
+    max_signal,
+)
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..particles import FieldSpec
 from ..timing import Timers
@@ -65,6 +83,10 @@ class SPHStage:
         self.use_as = spec.artificial_stress > 0.0
         self.w_dp = kernel_w(self.kern, self.dim, spec.spacing, self.h) if self.use_as else 1.0
         self.no_slip = spec.wall_no_slip
+        # kernel gradient correction (updated-Lagrangian: opt in, default off)
+        self.corr = bool(spec.correction)
+        self.corr_tag = (0,) if self.corr else ()
+        self._M = np.zeros((0, 3, 3))
         self.lo = np.array(case.domain[0], float)
         self.hi = np.array(case.domain[1], float)
         self.start = np.zeros(1, np.int64)
@@ -92,6 +114,8 @@ class SPHStage:
             out.append(FieldSpec("vg", ("dim",), migrate=False, halo=True))
         if case.sph.artificial_stress > 0:
             out.append(FieldSpec("R", (6,), migrate=False))
+        if case.sph.correction:
+            out.append(FieldSpec("B", (3, 3), migrate=False, fill="identity"))
         if multi:
             out += [FieldSpec("x_n", ("dim",), migrate=False),
                     FieldSpec("v_n", ("dim",), migrate=False),
@@ -126,6 +150,7 @@ class SPHStage:
         # rows may have moved since the last evaluation (migration): rebuild the lists and
         # the halo if so (collectively), else refresh the halo in place
         self._update_neighbours()
+        self._correction(halo=False)
         with t.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
             sph_rates(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
@@ -135,7 +160,28 @@ class SPHStage:
                       self.start, self.index, 0.0,
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
                       p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True,
-                      np.zeros((0, self.dim)), False)
+                      np.zeros((0, self.dim)), False, self.corr_tag, self._B())
+
+    def _B(self):
+        return self.p.with_halo("B") if self.corr else np.zeros((0, 3, 3))
+
+    def _correction(self, halo):
+        """Kernel gradient correction B of the owned rows (and, with `halo`, refreshed in
+        the halo: the force needs B at both ends of a pair). No-op without the option."""
+        if not self.corr:
+            return
+        p = self.p
+        n = p.n_owned
+        if len(self._M) < n:
+            self._M = np.zeros((max(n, 2 * len(self._M)), 3, 3))
+        with self.timers.phase("sph"):
+            correction_matrices(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+                                p.with_halo("mass"), p.with_halo("rho"),
+                                p.with_halo("method"), self.start, self.index, self._M,
+                                p.with_halo("B"))
+        if halo and self.halo_enabled:
+            with self.timers.phase("halo"):
+                self.halo.refresh(("B",))
 
     def _need_rebuild(self):
         """Collective: rebuild if the rows changed or a particle moved half the skin."""
@@ -186,6 +232,7 @@ class SPHStage:
             if self.halo_enabled:
                 with t.phase("halo"):
                     self.halo.refresh(("rho", "sigma", "vg"))
+        self._correction(halo=True)
         with t.phase("sph"):
             rho, sigma = p.with_halo("rho"), p.with_halo("sigma")
             sound_speeds(self.dim, nt, p.with_halo("method"), p.with_halo("mat"), rho,
@@ -203,7 +250,7 @@ class SPHStage:
                       self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
                       p.with_halo("drho"), p.with_halo("L"), True, self.want_L,
                       p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
-                      "fsi" in p)
+                      "fsi" in p, self.corr_tag, self._B())
         self.evaluated = True
         self.evaluations += 1
 
