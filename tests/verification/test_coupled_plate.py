@@ -1,26 +1,57 @@
-"""Scene 11 (seed 000 §6.2; BENCHMARKS.md scene 11): a 1 x 1 plate (E = 1e6, nu = 0.3,
-plane strain) with a central hole of radius a = 0.1 (10 a wide), SPH within r < 0.3 of the
+"""Scene 11 (seed 000 §6.2; BENCHMARKS.md scene 11): a 2 x 2 plate (E = 1e6, nu = 0.3,
+plane strain) with a central hole of radius a = 0.1 (20 a wide), SPH within r < 3 a of the
 hole centre, MPM outside, pulled by s = 300 Pa on its two outer particle layers top and
 bottom (cases/coupled_plate_hole.toml), damped to rest. Reference: Kirsch,
 sigma_yy(r) = s (1 + a^2/(2 r^2) + 3 a^4/(2 r^4)) on the horizontal mid line.
+The stress is the particles' own (sigma of the particle row just above the mid line,
+y = 1 + dp/2), not a smoothed estimate: that is what each method computes, and a smoothing
+would only flatten the peak at the hole further.
 
-Measured at this resolution (spacing a/8, t = 0.2, coupled run ~25 s on a quiet core):
-  coupled: settled (kinetic energy ~1e-9 J), far field 1.000 s; sigma_yy/s on the mid line
-  2.14 / 2.54 / 2.22 at r = 1.06 / 1.19 / 1.31 a against Kirsch 2.62 / 2.11 / 1.80
-  (-18 %, +20 %, +23 %): the 10 % of BENCHMARKS.md near the hole is NOT met; the same
-  plate in pure SPH (loaded by prescribed velocity, s = 344 Pa) gives -14 %, +21 %, +26 %:
-  the error is the SPH discretisation at the hole's free surface (truncated kernel), not
-  the coupling. Across the MPM/SPH transition (r = 3 a) the profile is smooth: last SPH
-  point 1.132 s (2.94 a), first MPM point 1.099 s (3.06 a); Kirsch falls by 0.004 s there.
-  pure MPM (same plate, no [[regions]], PIC): +5.9 % at 1.06 a, +5.4 % at 1.19 a (FLIP:
-  +2.3 %, +6.9 %, +15 % at 1.31 a; the finite plate: the loaded edges are 5 a from the hole).
-With FLIP on the MPM side (mpm.flip = 1) the coupled plate is unstable: a mode on the
-transition particles grows at ~30/s and stops the run near t = 0.4 (s = 1000 Pa; t ~ 0.6
-at the 1 mm/s loading of the seed); see the case file's header for the cause.
+Measured (spacing a/8, h = 1.3 dp, t = 0.3; sigma_yy/s and the error against Kirsch):
+
+  r/a     Kirsch   coupled          pure SPH         pure MPM         coupled plain   SPH plain
+  1.062   2.622    2.124  -19.0 %   2.071  -21.0 %   2.523  -3.8 %    -26.1 %         -28.6 %
+  1.187   2.110    2.126   +0.8 %   2.083   -1.3 %   2.052  -2.7 %     +9.8 %          +7.1 %
+  1.312   1.796    1.926   +7.2 %   1.899   +5.7 %   1.907  +6.1 %    +13.1 %         +11.1 %
+
+coupled and pure SPH with the corrected kernel (the case); "plain": without it (`[sph]
+correction = false`, the state before). Coupled and pure MPM are at rest (kinetic energy
+2e-8 J; the coupled plate stays there, 2e-9 J at t = 0.7 with the same stresses) with the
+far field at 1.000 s, and the coupled profile is smooth across the MPM/SPH transition at
+3 a (last SPH point 1.11 s at 2.94 a, first MPM point 1.10 s at 3.06 a). Pure SPH is pulled
+by a prescribed velocity (see `_pure_sph`) and reaches a gross stress of 0.63 s on the mid
+line; its errors are against Kirsch scaled by that.
+
+With the kernel gradient correction (`[sph] correction = true`, kernels/sph.py) the points
+at 1.19 a and 1.31 a are within the 10 % of BENCHMARKS.md; the particle row on the hole's
+surface (1.06 a) is NOT: -19 %, in the coupled and the pure SPH plate alike and with
+h = 1.1 dp as with 1.3 dp (-18.4 %), while pure MPM has it at -4 %. The cause is SPH's
+treatment of the free surface: applied to the exact Kirsch displacement on this particle
+set (`test_kirsch_field_velocity_gradient_at_the_hole_surface`), the plain velocity gradient
+gives sigma_yy 23 % short at the surface row (the truncated kernel; rows further in within
+3 %) and the corrected one 5 % short (a one-sided linear fit of a field that curves
+steeply there); the rest of the -19 % is the discrete equilibrium of the surface row (the
+nodally integrated force, whose boundary terms the correction does not make exact).
+
+Plate size: BENCHMARKS.md asks for "at least 8 hole radii wide". At 10 a (the previous
+1 x 1 plate) the exact solution of the finite plate is itself well above Kirsch near the
+hole: pure MPM gives +5.9 / +5.4 / +14 % at 1.06 / 1.19 / 1.31 a and, at spacing a/16,
++9 to +16 % between 1.09 and 1.41 a (net section 20 % of the width; Kt = 3.13 gross).
+At 20 a pure MPM is within -3.8 / -2.7 / +6.1 %, so Kirsch is a fair reference. (The
+corrected coupled plate at 10 a: -11.0 / +10.1 / +16.6 %; plain: -18 / +20 / +23 %.)
+Finer spacing was not an option: the coupled plate at a/16 (10 a wide) does not settle,
+with the plain kernel as with the corrected one (kinetic energy 1.2e-4 J at t = 0.2, the
+stress near the hole 30 % low and 20-30 % high at the transition): the case header has it.
+
+Reproduce: `python -m pytest -q -s tests/verification/test_coupled_plate.py` prints the
+errors of each column (the pure SPH plate is marked slow; `-m "not slow"` leaves it out);
+the plain columns: the same runs with `correction = true` removed from the case's [sph].
+Run times on one (shared) core: coupled 37 s, pure SPH 56 s, pure MPM 9 s.
 """
 from pathlib import Path
 
 import numpy as np
+import pytest
 from mpi4py import MPI
 
 from pmpmsph import load_case_file
@@ -30,59 +61,206 @@ from pmpmsph.simulation import Simulation
 CASE = Path(__file__).resolve().parents[2] / "cases" / "coupled_plate_hole.toml"
 A = 0.1
 S = 300.0
+C = 1.0        # hole centre (C, C)
+WIDTH = 2.0
+DP = 0.0125    # particle spacing
+E, NU = 1.0e6, 0.3
+END = 0.3
+PURE_SPH = [-0.210, -0.013, 0.057]   # pure SPH errors (module docstring)
 
 
 def kirsch(r):
     return 1.0 + A * A / (2.0 * r * r) + 1.5 * A ** 4 / r ** 4
 
 
+def kirsch_displacement(x, y):
+    """Kirsch's plane-strain displacement (infinite plate, tension S along y)."""
+    mu = E / (2.0 * (1.0 + NU))
+    kap = 3.0 - 4.0 * NU
+    # polar coordinates about the load axis: e1' = e_y, e2' = -e_x
+    x1, x2 = y - C, -(x - C)
+    r = np.hypot(x1, x2)
+    th = np.arctan2(x2, x1)
+    c2, s2 = np.cos(2.0 * th), np.sin(2.0 * th)
+    ur = S / (4.0 * mu) * (r * ((kap - 1.0) / 2.0 + c2) + A * A / r * (1.0 + (1.0 + kap) * c2)
+                           - A ** 4 / r ** 3 * c2)
+    ut = S / (4.0 * mu) * ((1.0 - kap) * A * A / r - r - A ** 4 / r ** 3) * s2
+    u1 = ur * np.cos(th) - ut * np.sin(th)
+    u2 = ur * np.sin(th) + ut * np.cos(th)
+    return np.stack([-u2, u1], axis=1)
+
+
+def _cut(text, head):
+    """The case text without its table `head` ("[sph]", "[[regions]]", ...), sub-tables
+    included."""
+    i = text.index("\n" + head + "\n")
+    name = head.strip("[]")
+    j = i + len(head) + 2
+    while True:
+        k = text.find("\n[", j)
+        if k < 0:
+            return text[:i] + "\n"
+        if not text[k + 1:].lstrip("[").startswith(name + "."):
+            return text[:i] + text[k:]
+        j = k + 2
+
+
 def _pure_mpm(tmp_path):
     """The case without its SPH region and [sph] section: every particle MPM."""
-    text = CASE.read_text()
-    cut = text.index("\n[sph]")
-    text = text[:cut] + text[text.index("\n[materials"):]
-    cut = text.index("\n[[regions]]")
-    text = text[:cut] + text[text.index("\n[[loads]]"):]
+    text = _cut(_cut(CASE.read_text(), "[sph]"), "[[regions]]")
     path = tmp_path / "plate_mpm.toml"
     path.write_text(text)
     return path
 
 
+def _pure_sph(tmp_path):
+    """Every particle SPH (corrected kernel as in the case). SPH particles take no
+    traction: the two outer layers are pulled apart at a constant speed V = 9.1e-4 m/s (the
+    plane-strain uniaxial strain s (1 - nu^2)/E reached at t = 0.3), x free. (A pull that
+    stops and then holds needs two prescriptions on one particle, which the loader does not
+    combine: the last one selecting a particle wins.) The errors are taken against the
+    gross stress of the mid-line row, sum(sigma_yy) dp / width, which this slow pull makes
+    ~s."""
+    text = CASE.read_text()
+    for head in ("[grid]", "[mpm]", "[[regions]]", "[[loads]]", "[[loads]]"):
+        text = _cut(text, head)
+    text = text.replace('method = "mpm"', 'method = "sph"')
+    speed = S * (1.0 - NU * NU) / E * WIDTH / 2.0 / END
+    text += f"\n[domain]\nmin = [-0.1, -0.1]\nmax = [{WIDTH + 0.1}, {WIDTH + 0.1}]\n"
+    for lo, hi, sign in ((WIDTH - 2 * DP, WIDTH, 1.0), (0.0, 2 * DP, -1.0)):
+        text += (f'\n[[prescribed]]\nbody = "plate"\n'
+                 f'box = {{ min = [0.0, {lo}], max = [{WIDTH}, {hi}] }}\n'
+                 f'velocity = ["free", {sign * speed}]\n')
+    path = tmp_path / "plate_sph.toml"
+    path.write_text(text)
+    return path
+
+
 def _run(path):
-    case = load_case_file(path, overrides=[("time.end", 0.2)])
+    case = load_case_file(path, overrides=[("time.end", END)])
     sim = Simulation(case, dist=Distributor(MPI.COMM_SELF))
     sim.run()
     p = sim.particles
-    x, syy = p["x"], p["sigma"][:, 1, 1] / S
-    # one particle row (y = 0.50625) right of the hole
-    line = (np.abs(x[:, 1] - 0.50625) < 0.003) & (x[:, 0] > 0.5)
-    r = x[line, 0] - 0.5
+    x, syy = p["x"], p["sigma"][:, 1, 1]
+    # the particle row y = C + dp/2 right of the hole
+    line = (np.abs(x[:, 1] - C - 0.5 * DP) < 0.25 * DP) & (x[:, 0] > C)
+    r = x[line, 0] - C
     order = np.argsort(r)
-    far = np.abs(x[:, 1] - 0.75) < 0.007
-    return sim, r[order], syy[line][order], p["method"][line][order], syy[far].mean()
+    far = syy[np.abs(x[:, 1] - 1.5) < 0.007].mean() / S   # two full rows: their mean is s
+    # the gross stress of the mid-line row (its force over the width)
+    row = np.abs(x[:, 1] - C - 0.5 * DP) < 0.25 * DP
+    gross = syy[row].sum() * DP / WIDTH / S
+    return sim, r[order], syy[line][order] / S, p["method"][line][order], far, gross
+
+
+def _near_errors(label, r, syy, scale=1.0):
+    near = r < 1.35 * A
+    err = syy[near] / scale / kirsch(r[near]) - 1.0
+    print(label, "r/a", (r[near] / A).round(3), "sigma_yy/s", syy[near].round(3),
+          "error", err.round(3))
+    return err
+
+
+def test_kirsch_field_velocity_gradient_at_the_hole_surface():
+    """The cause, measured without a run: the SPH velocity gradient applied to the exact
+    Kirsch displacement on the case's particles, as plane-strain sigma_yy/s on the mid line
+    against Kirsch at the particle. Plain kernel: the surface row 23 % short (the kernel cut
+    by the free surface), the next rows within 3 %; corrected: 5 % short, then within 1.5 %."""
+    from pmpmsph.kernels.neighbours import neighbour_lists
+    from pmpmsph.kernels.sph import correction_matrices, sph_rates
+
+    case = load_case_file(CASE)
+    sim = Simulation(case, dist=Distributor(MPI.COMM_SELF))
+    p = sim.particles
+    n = p.n_owned
+    x = np.ascontiguousarray(p["x"][:n])
+    keep = np.hypot(x[:, 0] - C, x[:, 1] - C) < 0.3     # the SPH disc and its neighbours
+    x = np.ascontiguousarray(x[keep])
+    n = len(x)
+    mass = p["mass"][: p.n_owned][keep].copy()
+    rho = mass / p["vol"][: p.n_owned][keep]
+    u = kirsch_displacement(x[:, 0], x[:, 1])
+    h = case.sph.h
+    start, index = neighbour_lists(x, n, 2.0 * h, half=True)
+    method = np.ones(n, np.int8)
+    lam = E * NU / ((1 + NU) * (1 - 2 * NU))
+    mu = E / (2 * (1 + NU))
+    line = np.nonzero((np.abs(x[:, 1] - C - 0.5 * DP) < 0.25 * DP) & (x[:, 0] > C)
+                      & (x[:, 0] < C + 0.15))[0]
+    line = line[np.argsort(x[line, 0])]
+    out = {}
+    for corr in (False, True):
+        B = np.zeros((n, 3, 3))
+        if corr:
+            correction_matrices((0, 0), (0,), h, n, x, mass, rho, method, start, index,
+                                np.zeros((n, 3, 3)), B)
+        L = np.zeros((n, 3, 3))
+        sph_rates((0, 0), (0,), h, n, x, u, u, mass, rho, np.zeros((n, 6)), np.ones(n),
+                  method, np.zeros(n, np.int32), start, index, 0.0, 0.0, False,
+                  np.zeros((0, 6)), 4.0, 1.0, np.zeros(3), 0.0, np.zeros((n, 2)),
+                  np.zeros(n), L, False, True, np.zeros((0, 2)), False,
+                  (0,) if corr else (), B)
+        e = 0.5 * (L + np.transpose(L, (0, 2, 1)))
+        syy = lam * (e[:, 0, 0] + e[:, 1, 1]) + 2 * mu * e[:, 1, 1]
+        xl, yl = x[line, 0] - C, x[line, 1] - C
+        exact = kirsch_exact_syy(xl, yl)
+        out[corr] = syy[line] / S / exact - 1.0
+        print("corrected" if corr else "plain", "r/a", (xl / A).round(3), "error",
+              out[corr].round(3))
+    assert out[False][0] == pytest.approx(-0.23, abs=0.01)
+    assert np.all(np.abs(out[False][1:4]) < 0.03)
+    assert out[True][0] == pytest.approx(-0.05, abs=0.01)
+    assert np.all(np.abs(out[True][1:4]) < 0.015)
+
+
+def kirsch_exact_syy(dx, dy):
+    """sigma_yy/s of Kirsch at (dx, dy) from the hole centre (any angle)."""
+    x1, x2 = dy, -dx
+    r = np.hypot(x1, x2)
+    th = np.arctan2(x2, x1)
+    q2, q4 = A * A / (r * r), A ** 4 / r ** 4
+    c2, s2 = np.cos(2 * th), np.sin(2 * th)
+    srr = 0.5 * (1 - q2) + 0.5 * (1 - 4 * q2 + 3 * q4) * c2
+    stt = 0.5 * (1 + q2) - 0.5 * (1 + 3 * q4) * c2
+    srt = -0.5 * (1 + 2 * q2 - 3 * q4) * s2
+    ct, st = np.cos(th), np.sin(th)
+    return srr * ct * ct + stt * st * st - 2 * srt * ct * st
 
 
 def test_scene11_coupled_plate_settles_smoothly_across_the_transition():
-    sim, r, syy, meth, far = _run(CASE)
+    sim, r, syy, meth, far, _ = _run(CASE)
     assert sim.diagnostics()["kinetic"] < 1e-7          # at rest (stable)
-    assert abs(far - 1.0) < 0.02                         # the far field carries s
+    assert abs(far - 1.0) < 0.01                         # the far field carries s
     assert set(meth) == {0, 1}
     jump = np.nonzero(np.diff(meth))[0][0]               # last SPH -> first MPM point
     step = syy[jump] - syy[jump + 1]
-    assert abs(step - (kirsch(r[jump]) - kirsch(r[jump + 1]))) < 0.05
-    near = r < 1.35 * A
-    err = syy[near] / kirsch(r[near]) - 1.0
-    print("coupled r/a", (r[near] / A).round(3), "error", err.round(3))
-    # NOT the 10 % of scene 11: SPH at its free surface (see the module docstring);
-    # pinned so that a change shows
-    assert np.all(np.abs(err - np.array([-0.18, 0.20, 0.23])[: len(err)]) < 0.02)
+    assert abs(step - (kirsch(r[jump]) - kirsch(r[jump + 1]))) < 0.02
+    err = _near_errors("coupled", r, syy)
+    assert len(err) == 3
+    # 1.19 a and 1.31 a: within the 10 % of scene 11
+    assert np.all(np.abs(err[1:]) < 0.10)
+    # the surface row 1.06 a: NOT within 10 % (SPH's free surface, see the docstring);
+    # pinned, as are the others, so that a change shows
+    assert np.all(np.abs(err - np.array([-0.190, 0.008, 0.072])) < 0.01)
 
 
 def test_scene11_pure_mpm_within_10_percent_of_kirsch_near_the_hole(tmp_path):
-    _, r, syy, meth, far = _run(_pure_mpm(tmp_path))
+    sim, r, syy, meth, far, _ = _run(_pure_mpm(tmp_path))
     assert set(meth) == {0}
-    assert abs(far - 1.0) < 0.02
-    near = r < 1.25 * A
-    err = syy[near] / kirsch(r[near]) - 1.0
-    print("MPM r/a", (r[near] / A).round(3), "error", err.round(3))
-    assert len(err) == 2 and np.all(np.abs(err) < 0.10)
+    assert sim.diagnostics()["kinetic"] < 1e-7
+    assert abs(far - 1.0) < 0.01
+    err = _near_errors("MPM", r, syy)
+    assert len(err) == 3 and np.all(np.abs(err) < 0.10)
+    assert np.all(np.abs(err - np.array([-0.038, -0.027, 0.061])) < 0.01)
+
+
+@pytest.mark.slow
+def test_scene11_pure_sph_plate(tmp_path):
+    _, r, syy, meth, far, gross = _run(_pure_sph(tmp_path))
+    assert set(meth) == {1}
+    print("pure SPH: gross stress of the mid-line row", gross, "far rows", far)
+    assert 0.5 < gross < 1.0   # measured 0.63 (see `_pure_sph`)
+    err = _near_errors("SPH", r, syy, scale=gross)
+    assert len(err) == 3
+    assert np.all(np.abs(err - np.array(PURE_SPH)) < 0.01)
+
