@@ -58,7 +58,10 @@ class SPHSpec:
     h: float = 0.0                     # smoothing length (support 2h)
     spacing: float = 0.0               # initial particle spacing (artificial stress W(dp))
     formulation: str = "updated"       # updated (Gray-Monaghan) | total (seed 004)
-    correction: bool = True            # total: Liu's full kernel correction (eqs. 1-3)
+    correction: bool = True            # kernel correction: total, Liu's full correction
+                                       # (eqs. 1-3; default on); updated, the gradient
+                                       # correction of Bonet & Lok (kernels/sph.py
+                                       # `correction_matrices`; default off, load.py)
     deformation: str = "reference"     # total: F by eq. 8 (reference) or eq. 9 (rate)
     force: str = "current"             # total: eq. 5 in the current configuration (seed) or
                                        # in the reference one with P = J sigma F^-T
