@@ -72,3 +72,23 @@ def test_plate_with_hole_equals_one_rank():
     sim.run(max_steps=150)
     ref.run(max_steps=150)
     _compare(dist, sim, ref)
+
+
+def test_float_equals_one_rank():
+    """Scene 7 with the coupling (cases/coupled_float.toml) at spacing 0.01, 200 steps: an
+    MPM ice block on SPH water in a tank of SPH dummy walls, hydrostatic start (a global
+    maximum), the water's pair forces on the block's points and their reactions (`fsi`) in
+    P2G, the block's nodes cut by the slab faces."""
+    from pathlib import Path
+
+    from pmpmsph import load_case_file
+    from pmpmsph.simulation import Simulation
+
+    path = Path(__file__).resolve().parents[2] / "cases" / "coupled_float.toml"
+    sets = [(f"bodies[{i}].spacing", 0.01) for i in range(5)]
+    dist = world()
+    sim = Simulation(load_case_file(path, overrides=sets), dist=dist)
+    ref = Simulation(load_case_file(path, overrides=sets), dist=serial())
+    sim.run(max_steps=200)
+    ref.run(max_steps=200)
+    _compare(dist, sim, ref)
