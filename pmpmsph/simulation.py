@@ -169,8 +169,8 @@ class Simulation(Restart):
         (pure MPM, no prescribed velocities, not USF), else a pass over the particles."""
         p = self.particles
         n = p.n_owned
-        if self._fused_signal[0] == self.step_count:
-            return self.dist.max(self._fused_signal[1])
+        if self._fused_signal[0] == self.step_count:  # already the global maximum
+            return self._fused_signal[1]
         if self.mpm is None and self.sph is not None:
             c = self.sph.signal_speed()
             if c is not None:
@@ -302,11 +302,12 @@ class Simulation(Restart):
         if self.coupling is not None:
             with self.timers.phase("coupling"):
                 self.coupling.prepare()
+        fused = None  # this rank's CFL signal speed from G2P, when valid for the new state
         if self.mpm is not None:
             bad = self.mpm.step(self.dt, self.time)
             if (self.mpm.signal is not None and self.sph is None
-                    and self.prescribed is None):
-                self._fused_signal = (self.step_count + 1, self.mpm.signal)
+                    and self.prescribed is None and self.case.time.cfl is not None):
+                fused = self.mpm.signal
         if self.coupling is not None:
             self.coupling.after_mpm()
         if self.sph is not None:
@@ -316,8 +317,11 @@ class Simulation(Restart):
         if self.prescribed is not None:
             self.prescribed.apply(self.time, self.dt, x_before)
         dec = self.decomposition
-        failed, due = self.migration.after_step(
-            bad >= 0, self.particles, dec.axis if dec else 0, dec.dx if dec else 1.0, self.dt)
+        failed, due, signal = self.migration.after_step(
+            bad >= 0, self.particles, dec.axis if dec else 0, dec.dx if dec else 1.0, self.dt,
+            fused)  # one collective for the failure flag, migration bound and CFL speed
+        if signal is not None:
+            self._fused_signal = (self.step_count + 1, signal)
         if failed:
             self._fail(bad)
         self.time += self.dt
@@ -481,5 +485,5 @@ class Simulation(Restart):
     case_overrides = ()
     case_dir = None
     _last_checkpoint_step = -1
-    _fused_signal = (-1, 0.0)  # (step it belongs to, local max (c + |v|) from G2P)
+    _fused_signal = (-1, 0.0)  # (step it belongs to, global max (c + |v|) from G2P)
     _busy_mark = 0.0  # compute seconds at the last load-balance check (balance_by = "time")

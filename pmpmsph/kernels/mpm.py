@@ -13,6 +13,19 @@ from .deformation import advance
 from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 
+@njit(inline="always")
+def stress_dot_gradient(dim, s00, s01, s02, s11, s12, s22, g0, g1, g2):
+    """(vol sigma) . grad N, the internal force term of eq. 65, with only the in-plane
+    components in 1D/2D (`dim` is a compile-time constant, and x * 0 is not folded away
+    under our fastmath flags, so the zero gradients would otherwise be multiplied out)."""
+    if dim == 1:
+        return s00 * g0, 0.0, 0.0
+    if dim == 2:
+        return s00 * g0 + s01 * g1, s01 * g0 + s11 * g1, 0.0
+    return (s00 * g0 + s01 * g1 + s02 * g2, s01 * g0 + s11 * g1 + s12 * g2,
+            s02 * g0 + s12 * g1 + s22 * g2)
+
+
 @njit
 def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, offset,
         inv_dx, strides, gmass, gmom, gforce, gmgrad, gmx, force_dt):
@@ -88,12 +101,15 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
                             g0 = d0[i] * w1[j] * w2[k]
                             g1 = w0[i] * d1[j] * w2[k]
                             g2 = wij * d2[k]
+                        if gforce is not None or force_dt is not None:
+                            t0, t1, t2 = stress_dot_gradient(dim, s00, s01, s02, s11, s12, s22,
+                                                             g0, g1, g2)
                         if force_dt is not None:
-                            gmom[fld, node, 0] += N * mv0 - (s00 * g0 + s01 * g1 + s02 * g2)
+                            gmom[fld, node, 0] += N * mv0 - t0
                             if dim > 1:
-                                gmom[fld, node, 1] += N * mv1 - (s01 * g0 + s11 * g1 + s12 * g2)
+                                gmom[fld, node, 1] += N * mv1 - t1
                             if dim > 2:
-                                gmom[fld, node, 2] += N * mv2 - (s02 * g0 + s12 * g1 + s22 * g2)
+                                gmom[fld, node, 2] += N * mv2 - t2
                         else:
                             gmom[fld, node, 0] += N * mv0
                             if dim > 1:
@@ -101,11 +117,11 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
                             if dim > 2:
                                 gmom[fld, node, 2] += N * mv2
                         if gforce is not None:
-                            gforce[fld, node, 0] += N * fe0 - (s00 * g0 + s01 * g1 + s02 * g2)
+                            gforce[fld, node, 0] += N * fe0 - t0
                             if dim > 1:
-                                gforce[fld, node, 1] += N * fe1 - (s01 * g0 + s11 * g1 + s12 * g2)
+                                gforce[fld, node, 1] += N * fe1 - t1
                             if dim > 2:
-                                gforce[fld, node, 2] += N * fe2 - (s02 * g0 + s12 * g1 + s22 * g2)
+                                gforce[fld, node, 2] += N * fe2 - t2
                         if gmgrad is not None:
                             gmgrad[fld, node, 0] += m * g0 * inv_dx
                             if dim > 1:
@@ -231,9 +247,9 @@ def mirror_grid_bc(dim, outside, inside, kind, normal, gvel, gdv):
 
 
 @njit
-def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield, mat, mtypes,
-        mparams, mstate, prestress, gvel, gdv, origin, offset, inv_dx, strides, dt, flip, lo,
-        hi, max_reach):
+def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield, mat,
+        mtypes, mparams, mstate, prestress, gvel, gdv, origin, offset, inv_dx, strides, dt,
+        flip, lo, hi, max_reach):
     """Gather from the grid (eqs. 80-86) for every particle.
 
     Kinematics: v_p <- flip (v_p + sum N dv) + (1 - flip) sum N v_new (FLIP/PIC blend),
@@ -252,7 +268,8 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
     CPDI domain that grows beyond `max_reach` cells is reported like an inversion.
     `origin` and `offset` place the local grid as in `p2g`.
     `mat_tag` fixes the material type at compile time when all particles share it
-    (`material_tag`).
+    (`material_tag`); `pic_tag` = (0,) when flip = 0 (PIC: the increments are not gathered),
+    () otherwise, also fixed at compile time.
     """
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
@@ -268,6 +285,11 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
     fld = 0
     bad = -1
     signal = 0.0
+    lo0, hi0 = lo[0], hi[0]  # the box as scalars: no array loads per particle
+    lo1 = lo[1] if dim > 1 else 0.0
+    hi1 = hi[1] if dim > 1 else 0.0
+    lo2 = lo[2] if dim > 2 else 0.0
+    hi2 = hi[2] if dim > 2 else 0.0
     for p in range(n):
         if pfield is not None:
             fld = pfield[p]
@@ -294,7 +316,7 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
                                 vp1 += N * u1
                             if dim > 2:
                                 vp2 += N * u2
-                            if flip != 0.0:  # PIC needs no increments (a predictable branch)
+                            if len(pic_tag) == 0:  # PIC needs no increments
                                 dv0 += N * gdv[fld, node, 0]
                                 if dim > 1:
                                     dv1 += N * gdv[fld, node, 1]
@@ -316,18 +338,22 @@ def g2p(dim_tag, kind_tag, mat_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield,
                                 L21 += u2 * g1
                                 L22 += u2 * g2
         if gdv is not None:
+            x0 = x[p, 0] + dt * vp0
+            x[p, 0] = x0
             v[p, 0] = flip * (v[p, 0] + dv0) + (1.0 - flip) * vp0
-            x[p, 0] += dt * vp0
+            inside = (x0 >= lo0) & (x0 <= hi0)  # no short circuit: fewer branches
             if dim > 1:
+                x1 = x[p, 1] + dt * vp1
+                x[p, 1] = x1
                 v[p, 1] = flip * (v[p, 1] + dv1) + (1.0 - flip) * vp1
-                x[p, 1] += dt * vp1
+                inside &= (x1 >= lo1) & (x1 <= hi1)
             if dim > 2:
+                x2 = x[p, 2] + dt * vp2
+                x[p, 2] = x2
                 v[p, 2] = flip * (v[p, 2] + dv2) + (1.0 - flip) * vp2
-                x[p, 2] += dt * vp2
-            for a in range(dim):
-                if not (x[p, a] >= lo[a] and x[p, a] <= hi[a]):
-                    if bad < 0:
-                        bad = p
+                inside &= (x2 >= lo2) & (x2 <= hi2)
+            if not inside and bad < 0:
+                bad = p
         if F is not None:
             L00 *= inv_dx
             L01 *= inv_dx

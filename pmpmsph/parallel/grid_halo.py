@@ -3,7 +3,8 @@
 P2G writes into ghost nodes; `reduce` sends every ghost layer's values to the neighbour that
 owns those nodes, which adds them in; after the grid update `broadcast` copies the owners'
 values back into the ghosts. Afterwards every node a particle touches holds the serial value.
-The node ranges and buffers (the communication plan) are built once per decomposition.
+The node ranges (the communication plan) are built once per decomposition, and the send and
+receive buffers once per set of arrays exchanged, then reused every step.
 """
 import numpy as np
 
@@ -19,6 +20,7 @@ class GridHalo:
         self.axis = decomposition.axis
         off = int(grid.offset[self.axis])
         self.bytes_sent = 0
+        self._buffers = {}  # (direction, shapes) -> [(sendbuf, recvbuf)] per plan entry
         self.plan = []  # (neighbour, ghost slice, shared slice) in local node indices
         for nb in (decomposition.left, decomposition.right):
             if nb is None:
@@ -32,22 +34,39 @@ class GridHalo:
         index[1 + self.axis] = sl
         return blk[tuple(index)]
 
+    def _buffers_for(self, arrays, send_slice):
+        """The send and receive buffers of each neighbour for these arrays (made once)."""
+        key = (send_slice, tuple(a.shape for a in arrays))
+        bufs = self._buffers.get(key)
+        if bufs is None:
+            bufs = []
+            for _, ghost, shared in self.plan:
+                out_sl, in_sl = (ghost, shared) if send_slice == "ghost" else (shared, ghost)
+                bufs.append((np.empty(sum(self._view(a, out_sl).size for a in arrays)),
+                             np.empty(sum(self._view(a, in_sl).size for a in arrays))))
+            self._buffers[key] = bufs
+        return bufs
+
     def _exchange(self, arrays, send_slice, recv_slice, tag, combine):
         if not self.plan:
             return
         from mpi4py import MPI
 
         reqs, recvs = [], []
-        for nb, ghost, shared in self.plan:
+        for (nb, ghost, shared), (sendbuf, recvbuf) in zip(self.plan,
+                                                           self._buffers_for(arrays, send_slice)):
             out_sl, in_sl = (ghost, shared) if send_slice == "ghost" else (shared, ghost)
-            sendbuf = np.concatenate([self._view(a, out_sl).ravel() for a in arrays])
-            recvbuf = np.empty(sum(self._view(a, in_sl).size for a in arrays))
+            pos = 0
+            for a in arrays:
+                view = self._view(a, out_sl)
+                sendbuf[pos:pos + view.size].reshape(view.shape)[...] = view
+                pos += view.size
+            reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag))
             reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=tag))
             self.bytes_sent += sendbuf.nbytes
-            reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag))
-            recvs.append((in_sl, recvbuf, sendbuf))
+            recvs.append((in_sl, recvbuf))
         MPI.Request.Waitall(reqs)
-        for in_sl, recvbuf, _ in recvs:
+        for in_sl, recvbuf in recvs:
             pos = 0
             for a in arrays:
                 view = self._view(a, in_sl)

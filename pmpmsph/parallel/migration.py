@@ -5,6 +5,8 @@ row per particle and sent to the neighbour that owns them; only the two neighbou
 contacted. A particle that would have to cross a whole slab in one step is an error (dt or
 the slab is wrong), decided collectively so no rank waits forever.
 """
+import math
+
 import numpy as np
 
 from ..errors import RunError
@@ -130,17 +132,29 @@ class MigrationSchedule:
         self.lazy = lazy and dist.size > 1
         self.drift = 0.0  # bound on any particle's move along the axis since the migration
 
-    def after_step(self, failed, particles, axis, dx, dt):
-        """(failed anywhere, migration due) on every rank."""
+    def after_step(self, failed, particles, axis, dx, dt, signal=None):
+        """(failed anywhere, migration due, global max of `signal`) on every rank, in one
+        collective. `signal`: this rank's CFL signal speed when the step produced it (else
+        None, and None comes back); a NaN counts as infinite, so no rank ever gets a finite
+        time step from a broken state."""
+        vals = [float(failed)]
+        if self.lazy:
+            vals.append(max_abs_column(particles["v"], axis, particles.n_owned))
+        if signal is not None:
+            vals.append(signal if signal == signal else math.inf)
+        if len(vals) == 1:
+            flag = self.dist.any(failed)
+        else:
+            out = self.dist.max_array(vals)
+            flag = out[0] > 0.0
+        c = out[-1] if signal is not None else None
         if not self.lazy:
-            return self.dist.any(failed), self.dist.size > 1
-        vmax = max_abs_column(particles["v"], axis, particles.n_owned)
-        flag, vmax = self.dist.max_array((float(failed), vmax))
-        if flag > 0.0:
-            return True, False
-        share = dt * vmax / dx
+            return flag, self.dist.size > 1, c
+        if flag:
+            return True, False, c
+        share = dt * out[1] / dx
         self.drift += share
-        return False, not (self.drift + 2.0 * share <= self.SLACK)  # NaN: migrate
+        return False, not (self.drift + 2.0 * share <= self.SLACK), c  # NaN: migrate
 
     def migrated(self):
         self.drift = 0.0
