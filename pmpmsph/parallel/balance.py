@@ -15,15 +15,19 @@ halo exchanges) divided by its modelled work gives its seconds per work unit, ea
 work is scaled by its owner's, and the faces go to the quantiles of that. Ranks that run
 slower per particle (a busier core, worse cache locality) then get fewer particles; the
 imbalance tested against the threshold is the measured one. The faces then depend on
-timings, so runs are no longer bit-for-bit repeatable (only equal to round-off). A measured
-imbalance must be seen at two checks in a row, with the same rank the most loaded, before
-faces move: one window's timing noise (a busy spell of the machine) then does not move them
-back and forth, and each move costs a grid rebuild and a migration.
+timings, so runs are no longer bit-for-bit repeatable (only equal to round-off). A marginal
+measured imbalance (below CONFIRM_BELOW x threshold) must be seen at two checks in a row,
+with the same rank the most loaded, before faces move: one window's timing noise (a busy
+spell of the machine) then does not move them back and forth, and each move costs a grid
+rebuild and a migration. A larger one (a core that runs much slower, as the virtual cores
+of a shared host do for seconds at a time) moves them at once.
 """
 import numpy as np
 
 
 NODE_COST = 0.1
+#: measured imbalances below this multiple of the threshold wait for a second check
+CONFIRM_BELOW = 3.0
 
 
 def layer_work(dec, x, nodes_per_layer):
@@ -91,9 +95,10 @@ class LoadBalancer:
         if before <= self.threshold:
             self._heaviest = None
             return None, before, before
-        if busy is not None:  # measured: confirm at the next check first (module doc)
+        if busy is not None:  # measured: a marginal imbalance is confirmed first (module doc)
             heaviest = int(np.argmax(rank_work(dec.faces, work)))
-            confirmed = heaviest == self._heaviest
+            confirmed = (heaviest == self._heaviest
+                         or before >= CONFIRM_BELOW * self.threshold)
             self._heaviest = None if confirmed else heaviest
             if not confirmed:
                 return None, before, before

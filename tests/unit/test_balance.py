@@ -43,16 +43,26 @@ class _Slabs:
         return np.clip(np.floor(x[:, 0]).astype(np.int64), 0, self.ncells - 1)
 
 
-def test_a_measured_imbalance_moves_faces_only_when_seen_twice_in_a_row():
+def test_a_marginal_measured_imbalance_moves_faces_only_when_seen_twice_in_a_row():
     from pmpmsph.parallel.balance import LoadBalancer
 
     dec = _Slabs([0, 5, 10])
     x = np.repeat(np.arange(10) + 0.5, 100)[:, None]  # 100 particles in each cell layer
-    lb = LoadBalancer(every=25, threshold=0.05)
-    slow_left = [2.0, 1.0]
+    lb = LoadBalancer(every=25, threshold=0.2)
+    slow_left = [1.6, 1.0]  # imbalance 0.23 (< 3 x threshold): marginal
     assert lb.propose(dec, x, 0.0, slow_left)[0] is None         # first sighting: wait
     assert lb.propose(dec, x, 0.0, [1.0, 2.0])[0] is None        # the other rank: noise
     assert lb.propose(dec, x, 0.0, slow_left)[0] is None         # seen once again
     faces, before, after = lb.propose(dec, x, 0.0, slow_left)    # twice in a row: move
     assert faces is not None and faces[1] < 5 and after < 0.5 * before
     assert lb.propose(dec, x, 0.0, None)[0] is None               # the model: balanced
+
+
+def test_a_large_measured_imbalance_moves_faces_at_once():
+    from pmpmsph.parallel.balance import LoadBalancer
+
+    dec = _Slabs([0, 5, 10])
+    x = np.repeat(np.arange(10) + 0.5, 100)[:, None]
+    faces, before, after = LoadBalancer(every=25, threshold=0.05).propose(dec, x, 0.0,
+                                                                          [2.0, 1.0])
+    assert before > 0.15 and faces is not None and faces[1] < 5
