@@ -388,7 +388,7 @@ def correction_matrices(dim_tag, kern_tag, h, n_query, x, mass, rho, method, sta
 @njit
 def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
               start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
-              acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B):
+              acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
@@ -407,18 +407,36 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     both ends (grad_b W_ba = -grad_a W_ab, the pair term of eq. 2.6 is symmetric), halving
     the kernel evaluations.
 
-    Across a material interface (mat_a != mat_b, e.g. water against an elastic MPM
-    obstacle) the pair transmits only compressive isotropic stress, the contact pressure
-    p_c = max(p_a, p_b, 0) on both ends: the stress term is -p_c (1/rho_a^2 + 1/rho_b^2) I
-    (plus the artificial viscosity), a frictionless, non-adhesive contact. Over a plane
-    interface these pairs sum to the traction p_c n (as a uniform sigma/rho^2 term does),
-    whereas the pair's own two pressures give (p_a + p_b)/2: the solid's pressure at its
-    surface lags the fluid's (its boundary points carry part of the load: seed 000 §5.2's
-    bar shows 0.75 of it). Measured on the float of scene 7 held at Archimedes' draft in
-    hydrostatic water: the pairs carry 102 % of the block's weight (43 % with (p_a + p_b)/2)
-    when the two lattices meet one water spacing apart. The full sigma/rho^2 term would let a
-    solid in tension pull fluid particles into it; within one material (the coupling of
-    seed 000) the full term is used.
+    Across a material interface (mat_a != mat_b) the pair transmits only isotropic pressure,
+    a frictionless contact. Between a fluid a (`fluid[mat_a]`, a Tait material) and a solid b
+    (e.g. water against an elastic MPM block or obstacle) the solid point stands for a
+    mirror of the fluid particle: it carries the fluid's own pressure p_a and the fluid's
+    density at its volume V_b = m_b/rho_b (mass rho_a V_b), and it counts twice in the
+    fluid's continuity equation, as a wall does for the fluid in contact with it:
+        drho_a/dt += 2 rho_a V_b (v_a - v_b) . grad_a W_ab,
+        dv_a/dt   += -2 V_b max(p_a, 0)/rho_a grad_a W_ab   (minus the artificial viscosity),
+    the reaction acting on b. Two reasons for this form. (i) Energy: the work of these pair
+    forces, -2 m_a V_b p_a/rho_a (v_a - v_b) . grad W, is exactly the fluid's stress power
+    m_a p_a/rho_a^2 drho_a/dt of the same pair (with p_a >= 0), so the interface neither makes
+    nor destroys energy (semi-discretely; the viscosity only dissipates). The earlier contact
+    pressure max(p_a, p_b, 0) on both ends, -p_c (1/rho_a^2 + 1/rho_b^2), took the MPM
+    block's own surface pressure whenever it was the larger. Measured on the float of scene
+    7 (cases/coupled_float.toml, spacing 0.005, T = 2): with FLIP on the block (mpm.flip = 1)
+    the total energy rose by 1.6 J in 0.5 s (kinetic 0.66 J against 0.03 J) and the run
+    failed at t = 1.98 s; with the fluid's own pressure on both ends but the solid counted
+    once in the continuity it still rose from t = 0.9 s (1.3 J by t = 1.4); with this form
+    it falls monotonically and the block settles (kinetic energy 0.0025 J at t = 2; with PIC
+    on the block, as the case has it, 0.0017 J against 0.0065 J with max(p_a, p_b, 0)).
+    (ii) Balance: in a fluid at uniform pressure next to a solid lattice that tiles with it,
+    the factor 2 makes the solid points push the interface particle exactly as hard as the
+    fluid behind it pushes it towards them (with a factor 1, the interface particle is
+    pressed into the solid by half its pressure load).
+    The continuity and force of these pairs use the plain kernel gradient (also with the
+    correction below), so that (i) holds with it.
+    Other material interfaces (two solids, two fluids) keep the contact pressure
+    p_c = max(p_a, p_b, 0) on both ends, -p_c (1/rho_a^2 + 1/rho_b^2) I: the full sigma/rho^2
+    term would let a solid in tension pull the other body's particles into it; within one
+    material (the coupling of seed 000) the full term is used.
 
     With `want_fsi`, an owned MPM point b whose SPH neighbour a is of another material takes
     the reaction of the pair force, fsi_b = -m_a m_b (pair term) (force units): the SPH
@@ -508,10 +526,19 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
             vab1 = va1 - v[b, 1] if dim > 1 else 0.0
             vab2 = va2 - v[b, 2] if dim > 2 else 0.0
             mb = mass[b]
+            # a fluid-solid pair: the solid point is the fluid's mirror (docstring)
+            mirror_a = mat[a] != mat[b] and fluid[mat[a]] and not fluid[mat[b]]
+            mirror_b = mat[a] != mat[b] and fluid[mat[b]] and not fluid[mat[a]]
             if upd_a:
-                drho[a] += mb * (vab0 * ca0 + vab1 * ca1 + vab2 * ca2)
+                if mirror_a:
+                    drho[a] += 2.0 * rho[a] * mb / rho[b] * (vab0 * g0 + vab1 * g1 + vab2 * g2)
+                else:
+                    drho[a] += mb * (vab0 * ca0 + vab1 * ca1 + vab2 * ca2)
             if upd_b:
-                drho[b] += ma * (vab0 * cb0 + vab1 * cb1 + vab2 * cb2)
+                if mirror_b:
+                    drho[b] += 2.0 * rho[b] * ma / rho[a] * (vab0 * g0 + vab1 * g1 + vab2 * g2)
+                else:
+                    drho[b] += ma * (vab0 * cb0 + vab1 * cb1 + vab2 * cb2)
             if want_L:
                 if upd_a:  # m_b (v~_b - v_a) (x) G_ab
                     u0 = mb * (vg[b, 0] - va0)
@@ -564,10 +591,16 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                 t3 = S[a, 3] + S[b, 3] if dim > 1 else 0.0
                 t4 = S[a, 4] + S[b, 4] if dim > 2 else 0.0
                 t5 = S[a, 5] + S[b, 5] if dim > 2 else 0.0
-            else:  # material interface: the contact pressure, compressive only
-                pc = max(-(S[a, 0] + S[a, 1] + S[a, 2]) * rho[a] * rho[a],
-                         -(S[b, 0] + S[b, 1] + S[b, 2]) * rho[b] * rho[b], 0.0) / 3.0
-                q = -pc * (1.0 / (rho[a] * rho[a]) + 1.0 / (rho[b] * rho[b])) - pi
+            else:  # material interface: compressive pressure only (docstring)
+                pa = -(S[a, 0] + S[a, 1] + S[a, 2]) * rho[a] * rho[a] / 3.0
+                pb = -(S[b, 0] + S[b, 1] + S[b, 2]) * rho[b] * rho[b] / 3.0
+                if mirror_a:  # m_b q = -2 V_b p_a/rho_a
+                    q = -2.0 * max(pa, 0.0) / (rho[a] * rho[b]) - pi
+                elif mirror_b:
+                    q = -2.0 * max(pb, 0.0) / (rho[a] * rho[b]) - pi
+                else:
+                    pc = max(pa, pb, 0.0)
+                    q = -pc * (1.0 / (rho[a] * rho[a]) + 1.0 / (rho[b] * rho[b])) - pi
                 t0 = q
                 t1 = q if dim > 1 else 0.0
                 t2 = q if dim > 2 else 0.0

@@ -86,6 +86,9 @@ class SPHStage:
         # kernel gradient correction (updated-Lagrangian: opt in, default off)
         self.corr = bool(spec.correction)
         self.corr_tag = (0,) if self.corr else ()
+        # per material: a fluid (Tait) meets a solid of another material through the mirror
+        # pair of kernels/sph.py's sph_rates
+        self.fluid = np.array([code == TAIT_FLUID for code in mtypes], np.bool_)
         self._M = np.zeros((0, 3, 3))
         self.lo = np.array(case.domain[0], float)
         self.hi = np.array(case.domain[1], float)
@@ -160,7 +163,7 @@ class SPHStage:
                       self.start, self.index, 0.0,
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
                       p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True,
-                      np.zeros((0, self.dim)), False, self.corr_tag, self._B())
+                      np.zeros((0, self.dim)), False, self.corr_tag, self._B(), self.fluid)
 
     def _B(self):
         return self.p.with_halo("B") if self.corr else np.zeros((0, 3, 3))
@@ -250,7 +253,7 @@ class SPHStage:
                       self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
                       p.with_halo("drho"), p.with_halo("L"), True, self.want_L,
                       p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
-                      "fsi" in p, self.corr_tag, self._B())
+                      "fsi" in p, self.corr_tag, self._B(), self.fluid)
         self.evaluated = True
         self.evaluations += 1
 

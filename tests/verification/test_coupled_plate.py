@@ -199,7 +199,7 @@ def test_kirsch_field_velocity_gradient_at_the_hole_surface():
                   method, np.zeros(n, np.int32), start, index, 0.0, 0.0, False,
                   np.zeros((0, 6)), 4.0, 1.0, np.zeros(3), 0.0, np.zeros((n, 2)),
                   np.zeros(n), L, False, True, np.zeros((0, 2)), False,
-                  (0,) if corr else (), B)
+                  (0,) if corr else (), B, np.zeros(1, np.bool_))
         e = 0.5 * (L + np.transpose(L, (0, 2, 1)))
         syy = lam * (e[:, 0, 0] + e[:, 1, 1]) + 2 * mu * e[:, 1, 1]
         xl, yl = x[line, 0] - C, x[line, 1] - C
