@@ -95,6 +95,15 @@ def sampled_spans(x0, x, nfine, n):
     return ly, at(k(n - 1), k(0))[0] - at(k(0), k(0))[0]
 
 
+def check_spans(label, got, ref, tol_y, tol_x):
+    """Print l_y, l_x against their reference and assert the relative tolerances."""
+    (ly, lx), (ly_ref, lx_ref) = got, ref
+    print(f"scene 2, {label}: l_y = {ly:.4f} ({ly / ly_ref - 1:+.1%} vs {ly_ref}), "
+          f"l_x = {lx:.4f} ({lx / lx_ref - 1:+.1%} vs {lx_ref})")
+    assert abs(ly / ly_ref - 1) < tol_y
+    assert abs(lx / lx_ref - 1) < tol_x
+
+
 def run_stably(ncell, npts, shape, end, field=None):
     """Run to `end`, asserting no failure, no particle lost, finite state and det F > 0;
     returns (l_y, l_x). `field`, if a dict, receives the seeds and end positions."""
@@ -147,12 +156,8 @@ def test_linear_hats_with_100x100_points_match_the_thesis(ncell):
         ref = sampled_spans(field["x0"], field["x"], 100, npts)
         print(f"  sampled at the {npts}x{npts} seeds: l_y = {ref[0]:.4f}, l_x = {ref[1]:.4f}")
         np.testing.assert_allclose(ref, REFERENCE[(ncell, npts)], atol=1e-4)
-    ly_ref, lx_ref = THESIS_100[ncell]
-    print(f"scene 2, linear, {ncell}x{ncell} cells, 100x100 points: l_y = {ly:.4f} "
-          f"({ly / ly_ref - 1:+.1%} vs thesis {ly_ref}), l_x = {lx:.4f} "
-          f"({lx / lx_ref - 1:+.1%} vs {lx_ref})")
-    assert abs(ly / ly_ref - 1) < 0.02
-    assert abs(lx / lx_ref - 1) < 0.03
+    check_spans(f"linear, {ncell}x{ncell} cells, 100x100 points", (ly, lx), THESIS_100[ncell],
+                0.02, 0.03)
 
 
 @pytest.mark.parametrize("ncell", [7, 8])
@@ -166,13 +171,8 @@ def test_cpdi_runs_stably_where_linear_hats_fail(ncell, npts):
     (+1.0 %). The l_y of 20 points sits 2 % under the reference, about the spread between
     the linear hats' and CPDI's 100 x 100 fields (0.1224 and 0.1197 at 8 x 8 cells, side
     0.3: 0.1201 and 0.1197)."""
-    ly, lx = run_stably(ncell, npts, "cpdi", END)
-    ly_ref, lx_ref = REFERENCE[(ncell, npts)]
-    print(f"scene 2, CPDI, {ncell}x{ncell} cells, {npts}x{npts} points, t = {END}: "
-          f"l_y = {ly:.4f} ({ly / ly_ref - 1:+.1%} vs {ly_ref}), l_x = {lx:.4f} "
-          f"({lx / lx_ref - 1:+.1%} vs {lx_ref})")
-    assert abs(ly / ly_ref - 1) < 0.04
-    assert abs(lx / lx_ref - 1) < 0.06
+    check_spans(f"CPDI, {ncell}x{ncell} cells, {npts}x{npts} points, t = {END}",
+                run_stably(ncell, npts, "cpdi", END), REFERENCE[(ncell, npts)], 0.04, 0.06)
 
 
 @pytest.mark.parametrize("ncell", [7, 8])
@@ -183,10 +183,5 @@ def test_quadratic_bsplines_run_stably_with_20x20_points(ncell):
     (-4.5 %) on 7 x 7 / 8 x 8 cells, so l_x is held to 15 % (the support, 3 cells = 0.077
     on 7 x 7 cells, is wider than the block, 0.06, and smooths its lateral contraction).
     With 5 x 5 points they tear at t = 0.02 like the linear hats (not asserted)."""
-    ly, lx = run_stably(ncell, 20, "quadratic", END)
-    ly_ref, lx_ref = REFERENCE[(ncell, 20)]
-    print(f"scene 2, quadratic B-splines, {ncell}x{ncell} cells, 20x20 points, t = {END}: "
-          f"l_y = {ly:.4f} ({ly / ly_ref - 1:+.1%} vs {ly_ref}), l_x = {lx:.4f} "
-          f"({lx / lx_ref - 1:+.1%} vs {lx_ref})")
-    assert abs(ly / ly_ref - 1) < 0.04
-    assert abs(lx / lx_ref - 1) < 0.15
+    check_spans(f"quadratic B-splines, {ncell}x{ncell} cells, 20x20 points, t = {END}",
+                run_stably(ncell, 20, "quadratic", END), REFERENCE[(ncell, 20)], 0.04, 0.15)
