@@ -83,6 +83,8 @@ class Simulation(Restart):
         if self.balancer is not None:  # seeding used equal slabs: balance before step 1
             with self.timers.phase("balance"):
                 self.rebalance()
+        if self.sph is not None and case.sph.hydrostatic:  # initial condition (collective)
+            self.sph.hydrostatic_start()
         self.h = min(min(case.grid.cell_size) if case.grid else np.inf,
                      case.sph.h if case.sph else np.inf)
         self.dt = self._initial_dt()

@@ -99,7 +99,6 @@ class SPHStage:
         self.evaluated = False
         self.evaluations = 0
         self.rebuilds = 0
-        self._hydrostatic_done = False
 
     @staticmethod
     def fields(case):
@@ -274,7 +273,9 @@ class SPHStage:
         and rho = rho0 exp(rho0 |g| z/kappa) for gamma = 1 (the limit).
         The top is the body's highest particle plus half a spacing (a flat surface).
         Without it a column seeded at rho0 drops by its compression and rings
-        (cases/sph_hydrostatic.toml). Applied once, at the first step from t = 0."""
+        (cases/sph_hydrostatic.toml). An initial condition: `Simulation` applies it once,
+        after seeding and the first balance (collective: the top is a global maximum), before
+        the first time step is chosen; a restart restores rho instead."""
         from ..materials.codes import TAIT_FLUID
 
         p = self.p
@@ -347,10 +348,6 @@ class SPHStage:
         """Advance owned SPH particles by dt; returns a failed row or -1."""
         p = self.p
         n = p.n_owned
-        if time == 0.0 and self.spec.hydrostatic and not self._hydrostatic_done:
-            self.hydrostatic_start()
-            self._hydrostatic_done = True
-            self.evaluated = False
         if not self.evaluated:
             self.initialise()
         m0 = self._mstate(n).copy()

@@ -38,7 +38,7 @@ def _water(sim):
 def test_hydrostatic_start_is_the_tait_hydrostatic_state_and_stays_at_rest():
     sim = _column(**{"sph.hydrostatic": True})
     p, w = sim.particles, _water(sim)
-    sim.sph.hydrostatic_start()                  # what the first step does at t = 0
+    sim.sph.hydrostatic_start()     # done at set-up already: applying it again changes nothing
     sim.sph.stress(0.0, np.zeros((p.n_owned, 0)))
     top = H  # the column's top row sits half a spacing below y = 1
     z = top - p["x"][w, 1]
