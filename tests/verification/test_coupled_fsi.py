@@ -5,9 +5,10 @@ Dam break on an elastic obstacle (cases/coupled_dam_obstacle.toml, SPH water, MP
 held at its base), here to t = 0.5 s (the impact; a coarser copy at spacing 0.04 loses a water particle
 through the 4-layer dummy wall when the run-up jet comes down, so the full spacing is used). Measured at full size
 (spacing 0.02, t = 1 s, `python -m pmpmsph cases/coupled_dam_obstacle.toml`): the surge
-reaches the obstacle near t = 0.31 s, the top deflects by up to 1.10 cm (at t = 0.39), the
-water runs up the obstacle face to y = 1.60 and over it; stable to the end, 2,342
-particles, about 70 s on one core.
+reaches the obstacle near t = 0.31 s, the top deflects by up to 1.25 cm (at t = 0.42), the
+water runs up the obstacle face to y = 2.14 and over it (1.10 cm and 1.60 with the earlier
+contact pressure max(p_a, p_b, 0)); stable to the end, 2,342 particles, about 70 s on one
+core.
 
 Float (scene 7; seed 003 §8.7, BENCHMARKS.md scene 7; cases/coupled_float.toml): an MPM ice
 block (PIC) on SPH water, released at rest near its equilibrium in hydrostatic water.
