@@ -24,6 +24,7 @@ import time
 from ..scene_api import Scene
 
 PHASES = ("p2g", "grid", "g2p", "halo", "migration", "balance", "output")
+COMPUTE = ("p2g", "grid", "g2p")
 
 
 def scaling_scene(particles=500_000, balance_every=25):
@@ -171,6 +172,14 @@ def run(ranks, particles, steps, out, output_every=0, repeat=3):
         r["efficiency"] = eff
         print(f"{n:>5} {r['wall'] / steps_:>8.4f} {rate:>10.2f} {eff:>5.2f} " + " ".join(
             f"{phase[p]:>9.4f}" for p in PHASES) + f" {halo_b:>11.0f} {mig_b:>11.0f}")
+    # each rank's own speed: unequal figures mean unequal cores (or cores slowing each
+    # other), which no decomposition can hide
+    for r in rows:
+        speeds = [sum(x["phases"][p] for p in COMPUTE) / max(x["particles"], 1) / r["steps"]
+                  * 1e9 for x in r["per_rank"]]
+        r["compute_ns_per_particle_step"] = speeds
+        print(f"{r['ranks']:>5} ranks: P2G + grid + G2P per particle-step on each rank: "
+              + ", ".join(f"{v:.1f}" for v in speeds) + " ns")
     with open(os.path.join(out, "scaling.json"), "w") as fh:
         json.dump(rows, fh, indent=1)
     return rows
