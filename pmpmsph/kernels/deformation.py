@@ -7,15 +7,37 @@ whichever array the scene stores and read it through these helpers, which Numba 
 the array's rank while typing the caller (no branch at run time). The plain Python bodies
 are what runs under NUMBA_DISABLE_JIT=1.
 """
-from numba import types
 from numba.extending import overload
+
+from ..jit import njit
+from ..materials.tensor import det3
+
+
+def _stores_J(D):
+    """True for J storage (rank 1), while Numba types a caller (D a type) or in Python."""
+    return D.ndim == 1
+
+
+def _J_stored(D, p):
+    return D[p]
+
+
+def _J_of_F(D, p):
+    return det3(D[p])
 
 
 def jacobian(D, p):
     """J = det F of particle p, from F (rank 3) or from J itself (rank 1)."""
-    if D.ndim == 1:
-        return D[p]
-    return _det3(D[p])
+    return _J_stored(D, p) if _stores_J(D) else _J_of_F(D, p)
+
+
+def _matrix_of_J(D, p, scratch):
+    scratch[0, 0] = D[p]
+    return scratch
+
+
+def _matrix_of_F(D, p, scratch):
+    return D[p]
 
 
 def deformation_matrix(D, p, scratch):
@@ -23,44 +45,7 @@ def deformation_matrix(D, p, scratch):
     J on its first diagonal entry. The caller sets `scratch` to the identity once: a matrix
     diag(J, 1, 1) has det J, and J is all a fluid's stress and energy read (`det_minus_one`
     gives J - 1 exactly for it)."""
-    if D.ndim == 1:
-        scratch[0, 0] = D[p]
-        return scratch
-    return D[p]
-
-
-def _det3(F):
-    return (F[0, 0] * (F[1, 1] * F[2, 2] - F[1, 2] * F[2, 1])
-            - F[0, 1] * (F[1, 0] * F[2, 2] - F[1, 2] * F[2, 0])
-            + F[0, 2] * (F[1, 0] * F[2, 1] - F[1, 1] * F[2, 0]))
-
-
-@overload(jacobian, inline="always")
-def _jacobian_typed(D, p):
-    if isinstance(D, types.Array) and D.ndim == 1:
-        def stored_J(D, p):
-            return D[p]
-        return stored_J
-
-    def from_F(D, p):
-        F = D[p]
-        return (F[0, 0] * (F[1, 1] * F[2, 2] - F[1, 2] * F[2, 1])
-                - F[0, 1] * (F[1, 0] * F[2, 2] - F[1, 2] * F[2, 0])
-                + F[0, 2] * (F[1, 0] * F[2, 1] - F[1, 1] * F[2, 0]))
-    return from_F
-
-
-@overload(deformation_matrix, inline="always")
-def _deformation_matrix_typed(D, p, scratch):
-    if isinstance(D, types.Array) and D.ndim == 1:
-        def stored_J(D, p, scratch):
-            scratch[0, 0] = D[p]
-            return scratch
-        return stored_J
-
-    def stored_F(D, p, scratch):
-        return D[p]
-    return stored_F
+    return (_matrix_of_J if _stores_J(D) else _matrix_of_F)(D, p, scratch)
 
 
 def advance(D, p, dim, dt, L, Fn):
@@ -71,9 +56,7 @@ def advance(D, p, dim, dt, L, Fn):
     F storage: F <- (I + dt L) F (seed 003, eq. 82); in 1D/2D the out-of-plane rows and
     columns of F stay as stored. J storage: J <- det(I + dt L) J, the determinant of the same
     update (det AB = det A det B)."""
-    if D.ndim == 1:
-        return _advance_J(D, p, dim, dt, L, Fn)
-    return _advance_F(D, p, dim, dt, L, Fn)
+    return (_advance_J if _stores_J(D) else _advance_F)(D, p, dim, dt, L, Fn)
 
 
 def _advance_J(D, p, dim, dt, L, Fn):
@@ -105,10 +88,12 @@ def _advance_F(D, p, dim, dt, L, Fn):
             for b in range(dim, 3):
                 Fn[a, b] = D[p, a, b]
                 Fn[b, a] = D[p, b, a]
-    return _det3(Fn)
+    return det3(Fn)
 
 
+@njit(inline="always")
 def _det3_identity_plus(dt, L):
+    """det(I + dt L)."""
     a00 = 1.0 + dt * L[0, 0]
     a11 = 1.0 + dt * L[1, 1]
     a22 = 1.0 + dt * L[2, 2]
@@ -122,18 +107,16 @@ def _det3_identity_plus(dt, L):
             + a02 * (a10 * a21 - a11 * a20))
 
 
-@overload(_det3_identity_plus, inline="always")
-def _det3_identity_plus_typed(dt, L):
-    return _det3_identity_plus
+@overload(jacobian, inline="always")
+def _jacobian_typed(D, p):
+    return _J_stored if _stores_J(D) else _J_of_F
 
 
-@overload(_det3, inline="always")
-def _det3_typed(F):
-    return _det3
+@overload(deformation_matrix, inline="always")
+def _deformation_matrix_typed(D, p, scratch):
+    return _matrix_of_J if _stores_J(D) else _matrix_of_F
 
 
 @overload(advance, inline="always")
 def _advance_typed(D, p, dim, dt, L, Fn):
-    if isinstance(D, types.Array) and D.ndim == 1:
-        return _advance_J
-    return _advance_F
+    return _advance_J if _stores_J(D) else _advance_F
