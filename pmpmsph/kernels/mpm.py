@@ -101,21 +101,17 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
                             g0 = d0[i] * w1[j] * w2[k]
                             g1 = w0[i] * d1[j] * w2[k]
                             g2 = wij * d2[k]
+                        q0, q1, q2 = N * mv0, N * mv1, N * mv2  # momentum (+ dt f folded)
                         if gforce is not None or force_dt is not None:
                             t0, t1, t2 = stress_dot_gradient(dim, s00, s01, s02, s11, s12, s22,
                                                              g0, g1, g2)
-                        if force_dt is not None:
-                            gmom[fld, node, 0] += N * mv0 - t0
-                            if dim > 1:
-                                gmom[fld, node, 1] += N * mv1 - t1
-                            if dim > 2:
-                                gmom[fld, node, 2] += N * mv2 - t2
-                        else:
-                            gmom[fld, node, 0] += N * mv0
-                            if dim > 1:
-                                gmom[fld, node, 1] += N * mv1
-                            if dim > 2:
-                                gmom[fld, node, 2] += N * mv2
+                            if force_dt is not None:
+                                q0, q1, q2 = q0 - t0, q1 - t1, q2 - t2
+                        gmom[fld, node, 0] += q0
+                        if dim > 1:
+                            gmom[fld, node, 1] += q1
+                        if dim > 2:
+                            gmom[fld, node, 2] += q2
                         if gforce is not None:
                             gforce[fld, node, 0] += N * fe0 - t0
                             if dim > 1:
@@ -355,24 +351,15 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
             if not inside and bad < 0:
                 bad = p
         if F is not None:
-            L00 *= inv_dx
-            L01 *= inv_dx
-            L02 *= inv_dx
-            L10 *= inv_dx
-            L11 *= inv_dx
-            L12 *= inv_dx
-            L20 *= inv_dx
-            L21 *= inv_dx
-            L22 *= inv_dx
-            L[0, 0] = L00
-            L[0, 1] = L01
-            L[0, 2] = L02
-            L[1, 0] = L10
-            L[1, 1] = L11
-            L[1, 2] = L12
-            L[2, 0] = L20
-            L[2, 1] = L21
-            L[2, 2] = L22
+            L[0, 0] = L00 * inv_dx
+            L[0, 1] = L01 * inv_dx
+            L[0, 2] = L02 * inv_dx
+            L[1, 0] = L10 * inv_dx
+            L[1, 1] = L11 * inv_dx
+            L[1, 2] = L12 * inv_dx
+            L[2, 0] = L20 * inv_dx
+            L[2, 1] = L21 * inv_dx
+            L[2, 2] = L22 * inv_dx
             J = advance(F, p, dim, dt, L, Fn)  # eq. 82 (or J alone, for fluids)
             vol[p] = J * vol0[p]
             if not (J > 0.0) and bad < 0:

@@ -50,9 +50,9 @@ class MPMStage:
         used = {list(case.materials).index(b.material) for b in case.bodies
                 if b.method == "mpm" or case.regions}
         self.mat_tag = material_tag(self.mtypes[sorted(used)])
+        self.pic_tag = (0,) if self.flip == 0.0 else ()  # PIC, for `kernels.mpm.g2p`
         # PIC-USL without damping needs only the updated nodal velocity, so P2G scatters
         # p + dt f into the momentum (one scatter instead of two, as Taichi's mpm88 does)
-        self.pic_tag = (0,) if self.flip == 0.0 else ()  # `kernels.mpm.g2p`
         self.fold_force = (self.transfer == "usl" and self.flip == 0.0 and self.damping == 0.0
                            and not self.multi)
         # rows [0, n_p2g) take part in P2G and [0, n_g2p) are updated by G2P; None: all
@@ -185,13 +185,13 @@ class MPMStage:
         g, p = self.grid, self.p
         n, lp, _, pfield, pre, mstate = self._optional(self.n_g2p)
         with self.timers.phase("g2p"):
-            bad, signal = g2p(*self.tags, self.mat_tag, self.pic_tag, p["x"][:n], p["v"][:n],
-                       p.deformation(n) if deformation else None, p["sigma"][:n],
-                       p["vol"][:n],
-                       p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n],
-                       self.mtypes, self.mparams, mstate, pre, g.vel,
-                       g.dv if kinematics else None, g.node0, g.offset, g.inv_dx, g.strides,
-                       dt, self.flip, g.lo, g.hi, float(self.case.mpm.cpdi_reach))
+            bad, signal = g2p(
+                *self.tags, self.mat_tag, self.pic_tag, p["x"][:n], p["v"][:n],
+                p.deformation(n) if deformation else None, p["sigma"][:n], p["vol"][:n],
+                p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n], self.mtypes,
+                self.mparams, mstate, pre, g.vel, g.dv if kinematics else None, g.node0,
+                g.offset, g.inv_dx, g.strides, dt, self.flip, g.lo, g.hi,
+                float(self.case.mpm.cpdi_reach))
         # max (c + |v|) of the owned rows, valid when this pass has the final velocities
         # too: USL's single pass and MUSL's second; after USF's first pass v changes again
         if deformation and (kinematics or self.transfer == "musl"):
