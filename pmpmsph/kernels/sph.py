@@ -21,7 +21,7 @@ import numpy as np
 from ..jit import njit
 from ..materials.codes import TAIT_FLUID
 from ..materials.dispatch import compute_stress, wave_speed
-from ..materials.tensor import det3
+from ..materials.tensor import cofactor3, det3
 from .sph_kernels import kernel_dwdr, kernel_w
 
 MPM = 0
@@ -284,27 +284,12 @@ def _invert_transpose_block(dim, M, a, out):
             out[a, 1, 0] = -m01 / d
             out[a, 1, 1] = m00 / d
         return d
-    # 3D: (M^T)^-1 = cof(M) / det M, cof = the cofactor matrix
-    c00 = M[a, 1, 1] * M[a, 2, 2] - M[a, 1, 2] * M[a, 2, 1]
-    c01 = M[a, 1, 2] * M[a, 2, 0] - M[a, 1, 0] * M[a, 2, 2]
-    c02 = M[a, 1, 0] * M[a, 2, 1] - M[a, 1, 1] * M[a, 2, 0]
-    c10 = M[a, 0, 2] * M[a, 2, 1] - M[a, 0, 1] * M[a, 2, 2]
-    c11 = M[a, 0, 0] * M[a, 2, 2] - M[a, 0, 2] * M[a, 2, 0]
-    c12 = M[a, 0, 1] * M[a, 2, 0] - M[a, 0, 0] * M[a, 2, 1]
-    c20 = M[a, 0, 1] * M[a, 1, 2] - M[a, 0, 2] * M[a, 1, 1]
-    c21 = M[a, 0, 2] * M[a, 1, 0] - M[a, 0, 0] * M[a, 1, 2]
-    c22 = M[a, 0, 0] * M[a, 1, 1] - M[a, 0, 1] * M[a, 1, 0]
-    d = M[a, 0, 0] * c00 + M[a, 0, 1] * c01 + M[a, 0, 2] * c02
+    # 3D: (M^T)^-1 = cof(M) / det M
+    cof = cofactor3(M[a])
+    d = M[a, 0, 0] * cof[0] + M[a, 0, 1] * cof[1] + M[a, 0, 2] * cof[2]
     if d != 0.0:
-        out[a, 0, 0] = c00 / d
-        out[a, 0, 1] = c01 / d
-        out[a, 0, 2] = c02 / d
-        out[a, 1, 0] = c10 / d
-        out[a, 1, 1] = c11 / d
-        out[a, 1, 2] = c12 / d
-        out[a, 2, 0] = c20 / d
-        out[a, 2, 1] = c21 / d
-        out[a, 2, 2] = c22 / d
+        for k in range(9):
+            out[a, k // 3, k % 3] = cof[k] / d
     return d
 
 

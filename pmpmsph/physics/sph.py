@@ -84,7 +84,8 @@ class SPHStage:
         self.w_dp = kernel_w(self.kern, self.dim, spec.spacing, self.h) if self.use_as else 1.0
         self.no_slip = spec.wall_no_slip
         # kernel gradient correction (updated-Lagrangian: opt in, default off)
-        self.corr = bool(spec.correction)
+        # (the total formulation corrects its own kernel: TLSPHStage, kernel_correction)
+        self.corr = bool(spec.correction) and spec.formulation == "updated"
         self.corr_tag = (0,) if self.corr else ()
         # per material: a fluid (Tait) meets a solid of another material through the mirror
         # pair of kernels/sph.py's sph_rates

@@ -44,11 +44,11 @@ def _scene(seed=1):
 
 
 def test_interface_work_equals_the_fluid_stress_power():
-    x, v, mass, rho, p, method, mat, solid = _scene()
     """Kinetic power (fluid forces and the reactions on the solid points, no gravity or
     viscosity) plus the fluid's stress power m p/rho^2 drho/dt is zero: the fluid-fluid pairs
     balance on their own (eq. 2.5-2.6 of seed 000), the fluid-solid pairs by the mirror
     form. The solid's own stress is not part of the pair (its MPM update stores it)."""
+    x, v, mass, rho, p, method, mat, solid = _scene()
     fluid = np.array([True, False])
     acc, drho, fsi = _rates(x, v, mass, rho, p, method, mat, fluid, 0.013)
     f = ~solid
