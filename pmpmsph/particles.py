@@ -89,7 +89,7 @@ class ParticleSet:
 
     def deformation(self, n=None):
         """F (n, 3, 3) or, in a J-only scene, J (n,) over the rows [0, n) (default: owned);
-        the kernels that read either take this array (see `kernels.diagnostics.jacobian`)."""
+        the kernels that read either take this array (see `kernels.deformation`)."""
         arr = self.arrays["F"] if "F" in self.arrays else self.arrays["J"]
         return arr[: self.n_owned if n is None else n]
 

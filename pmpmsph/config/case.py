@@ -230,14 +230,12 @@ class Case:
 
     @property
     def tracks_J_only(self):
-        """True when particles carry J = det F instead of F (`mpm.deformation`): a pure-MPM
-        scene of fluids (Tait), any shape but CPDI, whose domains F shapes."""
+        """True when particles carry J = det F instead of F (`mpm.deformation` "auto" or "J",
+        which load.py refuses otherwise): a pure-MPM scene of fluids (Tait), any shape but
+        CPDI, whose domains F shapes."""
         if self.mpm.deformation == "F" or self.has_sph or self.mpm.shape == "cpdi":
             return False
-        if self.mpm.deformation == "J":
-            return True
-        used = {b.material for b in self.bodies}
-        return all(self.materials[m].model == "tait_fluid" for m in used)
+        return all(self.materials[b.material].model == "tait_fluid" for b in self.bodies)
 
     def material_names(self):
         return list(self.materials)

@@ -515,8 +515,4 @@ def case_from_dict(data, name="case", text=""):
     if mpm.deformation == "J" and not case.tracks_J_only:
         raise ConfigError("mpm.deformation", "J alone describes fluids only: it needs a pure-MPM "
                           "scene (no SPH), a shape other than cpdi and only fluid materials")
-    if mpm.deformation == "J" and any(materials[b.material].model != "tait_fluid"
-                                      for b in bodies):
-        raise ConfigError("mpm.deformation", "J alone describes fluids only, but a body uses a "
-                          "solid material")
     return case
