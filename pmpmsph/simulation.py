@@ -13,7 +13,8 @@ import numpy as np
 
 from .build import build_particles, material_arrays, sph_stage_class
 from .errors import ConfigError, RunError
-from .io.restart import DIAG_COLUMNS, Restart
+from .io.diagnostics import DIAG_COLUMNS
+from .io.restart import Restart
 from .kernels.deformation import jacobian
 from .kernels.diagnostics import max_signal_speed, particle_sums
 from .materials.dispatch import material_tag
@@ -319,13 +320,12 @@ class Simulation(Restart):
         if self.prescribed is not None:
             self.prescribed.apply(self.time, self.dt, x_before)
         dec = self.decomposition
-        failed, due, signal = self.migration.after_step(
-            bad >= 0, self.particles, dec.axis if dec else 0, dec.dx if dec else 1.0, self.dt,
-            fused)  # one collective for the failure flag, migration bound and CFL speed
+        failed, speed, signal = self._step_check(bad >= 0, fused)
         if signal is not None:
             self._fused_signal = (self.step_count + 1, signal)
         if failed:
             self._fail(bad)
+        due = self.migration.due(speed, self.dt, dec.dx if dec else 1.0)
         self.time += self.dt
         self.step_count += 1
         if due and dec is not None:
@@ -344,6 +344,22 @@ class Simulation(Restart):
             with self.timers.phase("balance"):
                 self.rebalance()
         self._update_dt()
+
+    def _step_check(self, failed, signal):
+        """The step's one collective: (failure on any rank, global max |v| along the slab
+        axis for `MigrationSchedule.due` or None, global CFL signal speed or None when
+        `signal` is None). A NaN signal counts as infinite, so no rank ever gets a finite
+        time step from a broken state."""
+        dec = self.decomposition
+        speed = self.migration.local_speed(self.particles, dec.axis if dec else 0)
+        local = [float(failed)]
+        if speed is not None:
+            local.append(speed)
+        if signal is not None:
+            local.append(signal if signal == signal else math.inf)
+        out = self.dist.max_array(local)
+        return (out[0] > 0.0, out[1] if speed is not None else None,
+                out[-1] if signal is not None else None)
 
     def rebalance(self, force_faces=None):
         """Move slab faces if the work is out of balance (collective); True if they moved."""

@@ -11,6 +11,10 @@ import os
 
 import numpy as np
 
+#: columns of diagnostics.csv
+DIAG_COLUMNS = ("time", "step", "dt", "kinetic", "strain", "potential", "total",
+                "px", "py", "pz", "mass")
+
 
 def _format(value):
     if value is None:

@@ -16,11 +16,6 @@ from ..errors import ConfigError
 
 log = logging.getLogger("pmpmsph")
 
-#: columns of diagnostics.csv
-DIAG_COLUMNS = ("time", "step", "dt", "kinetic", "strain", "potential", "total",
-                "px", "py", "pz", "mass")
-
-
 class Restart:
     """Checkpoint and restart methods of `Simulation` (they use its state: particles,
     decomposition, dist, timers, case, output writers)."""
@@ -177,7 +172,7 @@ class Restart:
         """Output of a restarted run (after `restore_checkpoint`): continue particles.h5 and
         diagnostics.csv in `out_dir` if present (snapshots after the restart step and rows
         from it on are dropped first), start new files otherwise (or with `overwrite`)."""
-        from .diagnostics import DiagnosticsCSV, truncate_rows
+        from .diagnostics import DIAG_COLUMNS, DiagnosticsCSV, truncate_rows
         from .snapshots import SnapshotWriter, code_version
 
         self.out_dir = out_dir

@@ -5,8 +5,6 @@ row per particle and sent to the neighbour that owns them; only the two neighbou
 contacted. A particle that would have to cross a whole slab in one step is an error (dt or
 the slab is wrong), decided collectively so no rank waits forever.
 """
-import math
-
 import numpy as np
 
 from ..errors import RunError
@@ -110,8 +108,9 @@ migrate.bytes_sent = 0
 
 
 class MigrationSchedule:
-    """When to migrate, decided collectively after every step together with the step's
-    failure check (one allreduce for both).
+    """When to migrate, decided collectively after every step from the global max |v| along
+    the slab axis, which `Simulation` reduces in the step's one allreduce (with the failure
+    flag and the CFL speed).
 
     A particle may stay with its old rank for a while after crossing a slab face: its P2G
     lands on ghost nodes, which `GridHalo.reduce` adds into their owner, and G2P reads ghost
@@ -132,29 +131,17 @@ class MigrationSchedule:
         self.lazy = lazy and dist.size > 1
         self.drift = 0.0  # bound on any particle's move along the axis since the migration
 
-    def after_step(self, failed, particles, axis, dx, dt, signal=None):
-        """(failed anywhere, migration due, global max of `signal`) on every rank, in one
-        collective. `signal`: this rank's CFL signal speed when the step produced it (else
-        None, and None comes back); a NaN counts as infinite, so no rank ever gets a finite
-        time step from a broken state."""
-        vals = [float(failed)]
-        if self.lazy:
-            vals.append(max_abs_column(particles["v"], axis, particles.n_owned))
-        if signal is not None:
-            vals.append(signal if signal == signal else math.inf)
-        if len(vals) == 1:
-            flag = self.dist.any(failed)
-        else:
-            out = self.dist.max_array(vals)
-            flag = out[0] > 0.0
-        c = out[-1] if signal is not None else None
+    def local_speed(self, particles, axis):
+        """This rank's max |v| along the slab axis for the bound, or None (not lazy)."""
+        return max_abs_column(particles["v"], axis, particles.n_owned) if self.lazy else None
+
+    def due(self, speed, dt, dx):
+        """Migrate after this step? `speed`: the global max of `local_speed`."""
         if not self.lazy:
-            return flag, self.dist.size > 1, c
-        if flag:
-            return True, False, c
-        share = dt * out[1] / dx
+            return self.dist.size > 1
+        share = dt * speed / dx
         self.drift += share
-        return False, not (self.drift + 2.0 * share <= self.SLACK), c  # NaN: migrate
+        return not (self.drift + 2.0 * share <= self.SLACK)  # NaN: migrate
 
     def migrated(self):
         self.drift = 0.0
