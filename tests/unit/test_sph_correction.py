@@ -82,3 +82,22 @@ def test_corrected_forces_conserve_momentum_and_are_the_adjoint_of_L():
     stress_power = (mass / rho * np.einsum("aij,aij->a", sigma[:, :2, :2], L[:, :2, :2])).sum()
     assert power == pytest.approx(-stress_power, rel=1e-10)
 
+
+
+def test_correction_matrix_inverts_the_moment_matrix_in_3d():
+    """B_a = (M_a^T)^-1 on a jittered 3D lattice (the 3D inverse goes through the cofactor
+    matrix): B_a M_a^T = I for every row whose M_a is invertible enough to be corrected."""
+    from pmpmsph.kernels.sph import CORRECTION_MIN_DET
+
+    rng = np.random.default_rng(0)
+    g = np.arange(5) * 0.1
+    x = np.stack(np.meshgrid(g, g, g, indexing="ij"), -1).reshape(-1, 3)
+    x += rng.uniform(-0.01, 0.01, x.shape)
+    n = len(x)
+    start, index = neighbour_lists(x, n, 0.26, half=True)
+    M, B = np.zeros((n, 3, 3)), np.zeros((n, 3, 3))
+    correction_matrices((0, 0, 0), (0,), 0.13, n, x, np.ones(n), np.full(n, 1000.0),
+                        np.ones(n, np.int8), start, index, M, B)
+    ok = np.linalg.det(M) > CORRECTION_MIN_DET
+    assert ok.sum() > n // 2
+    assert np.abs(B[ok] @ np.transpose(M[ok], (0, 2, 1)) - np.eye(3)).max() < 1e-12
