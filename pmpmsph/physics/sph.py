@@ -25,7 +25,6 @@ import numpy as np
 from ..kernels.neighbours import moved_beyond, neighbour_lists
 from ..kernels.sph import (
     artificial_stress,
-    correction_matrices,
     pair_stress,
     sound_speeds,
     sph_rates,
@@ -33,6 +32,7 @@ from ..kernels.sph import (
     sync_ghost_velocity,
     wall_state,
 )
+from ..kernels.sph_correction import correction_matrices
 from ..kernels.sph_integrate import (
     add_scaled,
     advance,

@@ -167,7 +167,8 @@ def test_kirsch_field_velocity_gradient_at_the_hole_surface():
     against Kirsch at the particle. Plain kernel: the surface row 23 % short (the kernel cut
     by the free surface), the next rows within 3 %; corrected: 5 % short, then within 1.5 %."""
     from pmpmsph.kernels.neighbours import neighbour_lists
-    from pmpmsph.kernels.sph import correction_matrices, sph_rates
+    from pmpmsph.kernels.sph import sph_rates
+    from pmpmsph.kernels.sph_correction import correction_matrices
 
     case = load_case_file(CASE)
     sim = Simulation(case, dist=Distributor(MPI.COMM_SELF))
