@@ -5,11 +5,27 @@ owns those nodes, which adds them in; after the grid update `broadcast` copies t
 values back into the ghosts. Afterwards every node a particle touches holds the serial value.
 The node ranges (the communication plan) are built once per decomposition, and the send and
 receive buffers once per set of arrays exchanged, then reused every step.
+
+`sum` does both in one exchange, and is what the MPM stage uses: each rank sends its partial
+sums on every node it shares with a neighbour (its ghosts and the neighbour's ghosts) and adds
+what it receives, so owners and ghost holders both end with the full sum (a + b on one side,
+b + a on the other: the same double, addition being commutative). The grid update is local to
+each node (masses, momenta, forces, boundary conditions, contact), so solving the ghosts too
+gives them the owners' values bit for bit, and the broadcast after the update, with its
+synchronisation, is not needed. That matters on a shared machine: every synchronisation makes
+the rank that got there first wait for the other, and the grid update differs in length
+between ranks (their slabs hold different numbers of nodes), so the broadcast's wait was paid
+every step even when the balancer had equalised the ranks' total work. DESIGN.md §4 has
+reduce-then-broadcast; `sum` gives the same numbers with one synchronisation fewer per pass.
+It needs every shared node to be shared by exactly two ranks, which holds when every interior
+slab is at least two ghost widths thick; otherwise (`pairwise` False, the same on every rank)
+`sum` falls back to `reduce` then `broadcast` of the sums.
 """
 import numpy as np
 
 TAG_REDUCE = 11
 TAG_BCAST = 12
+TAG_SUM = 13
 
 
 class GridHalo:
@@ -22,11 +38,18 @@ class GridHalo:
         self.bytes_sent = 0
         self._buffers = {}  # (direction, shapes) -> [(sendbuf, recvbuf)] per plan entry
         self.plan = []  # (neighbour, ghost slice, shared slice) in local node indices
+        self.both = []  # (neighbour, slice of all nodes shared with it) for `sum`
         for nb in (decomposition.left, decomposition.right):
             if nb is None:
                 continue
             (g_lo, g_hi), (s_lo, s_hi) = decomposition.overlap(nb)
             self.plan.append((nb, slice(g_lo - off, g_hi - off), slice(s_lo - off, s_hi - off)))
+            self.both.append((nb, slice(min(g_lo, s_lo) - off, max(g_hi, s_hi) - off)))
+        faces, ghost = decomposition.faces, decomposition.ghost
+        # no node is local to three ranks: the two ghost layers of an interior slab's
+        # neighbours stay apart (decided from the faces, so every rank decides alike)
+        self.pairwise = all(faces[r + 1] - faces[r] >= 2 * ghost
+                            for r in range(1, decomposition.size - 1))
 
     def _view(self, arr, sl):
         blk = self.grid.block(arr)
@@ -76,6 +99,42 @@ class GridHalo:
                     view += part
                 else:
                     view[...] = part
+
+    def sum(self, arrays):
+        """Full sums on owned and ghost nodes alike, in one exchange (module doc)."""
+        if not self.pairwise:
+            self.reduce(arrays)
+            self.broadcast(arrays)
+            return
+        if not self.both:
+            return
+        from mpi4py import MPI
+
+        key = ("both", tuple(a.shape for a in arrays))
+        bufs = self._buffers.get(key)
+        if bufs is None:
+            bufs = []
+            for _, sl in self.both:
+                size = sum(self._view(a, sl).size for a in arrays)
+                bufs.append((np.empty(size), np.empty(size)))
+            self._buffers[key] = bufs
+        reqs = []
+        for (nb, sl), (sendbuf, recvbuf) in zip(self.both, bufs):
+            pos = 0
+            for a in arrays:
+                view = self._view(a, sl)
+                sendbuf[pos:pos + view.size].reshape(view.shape)[...] = view
+                pos += view.size
+            reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=TAG_SUM))
+            reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=TAG_SUM))
+            self.bytes_sent += sendbuf.nbytes
+        MPI.Request.Waitall(reqs)
+        for (_, sl), (_, recvbuf) in zip(self.both, bufs):
+            pos = 0
+            for a in arrays:
+                view = self._view(a, sl)
+                view += recvbuf[pos:pos + view.size].reshape(view.shape)
+                pos += view.size
 
     def reduce(self, arrays):
         """Add every ghost node's values into its owner (arrays: nodal accumulators)."""

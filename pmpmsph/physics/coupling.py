@@ -129,8 +129,7 @@ class Coupling:
         mark_mpm_cells(self.dim_tag, p.n_owned, p["x"], p["method"], p["mat"], material,
                        g.origin, g.inv_dx, g.strides, shape, mark[0])
         if self.mpm.halo_enabled:
-            self.mpm.halo.reduce([mark])
-            self.mpm.halo.broadcast([mark])
+            self.mpm.halo.sum([mark])
         return mark[0], shape
 
     def prepare(self):

@@ -163,9 +163,9 @@ class MPMStage:
         sums = [g.mass, g.mom] + ([g.force] if with_force and not fold else [])
         if self.multi:
             sums += [g.mgrad, g.mx]
-        if self.halo_enabled:
+        if self.halo_enabled:  # ghosts get the full sums too, so no broadcast after the solve
             with t.phase("halo"):
-                self.halo.reduce(sums)
+                self.halo.sum(sums)
 
     def _solve(self, dt, time, with_force):
         g = self.grid
@@ -176,10 +176,9 @@ class MPMStage:
             if self.multi:
                 multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv,
                                     self.friction, self.mass_cutoff, self.contact_gap)
+            # node-local: ghost nodes, holding the full sums (`GridHalo.sum`), get the
+            # owners' velocities bit for bit
             self.bcs.apply(time, g.vel, g.dv)
-        if self.halo_enabled:
-            with self.timers.phase("halo"):
-                self.halo.broadcast([g.vel, g.dv])
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p

@@ -39,6 +39,46 @@ def test_ghost_node_sums_equal_the_serial_grid():
         assert rel_diff(g.vel[0], rg.vel[0, every]) < 1e-10, shape
 
 
+@pytest.mark.parametrize("thin", [False, True])
+def test_ghost_nodes_hold_the_owners_values_bit_for_bit(thin):
+    """`GridHalo.sum` gives owners and ghost holders the same nodal sums, and the node-local
+    grid update then the same velocities, with no broadcast: every node held by two ranks
+    has equal mass, momentum, velocity and increment on both, exactly. `thin` (3 or more
+    ranks) makes an interior slab thinner than two ghost widths, where a node is held by
+    three ranks and `sum` takes the reduce-and-broadcast path instead; the result must be
+    the same."""
+    dist = world()
+    sim = dam_break(barrier=True).simulation(dist=dist)
+    sim.run(max_steps=30)
+    dec = sim.decomposition
+    if thin and dist.size >= 3:
+        faces = dec.faces.copy()
+        faces[2] = faces[1] + dec.ghost  # the second slab: one ghost width thick
+        sim.rebalance(force_faces=faces)
+        dec = sim.decomposition
+    assert sim.mpm.halo.pairwise == (not thin or dist.size < 3)
+    sim.mpm._p2g(True)
+    sim.mpm._solve(sim.dt, sim.time, True)
+    g = sim.mpm.grid
+    gidx = g.global_index()
+    key = gidx[0] * 100_000 + gidx[1]
+    rows = np.concatenate([g.mass.T, g.mom[0], g.vel[0], g.dv[0]], axis=1)
+    keys = np.concatenate(dist.comm.allgather(key))
+    vals = np.concatenate(dist.comm.allgather(rows))
+    order = np.argsort(keys, kind="stable")
+    keys, vals = keys[order], vals[order]
+    dup = np.nonzero(keys[1:] == keys[:-1])[0]
+    assert len(dup) > 0  # nodes are shared
+    assert np.array_equal(vals[dup], vals[dup + 1])
+    # and the values are the serial grid's
+    ref = dam_break(barrier=True).simulation(dist=serial())
+    ref.run(max_steps=30)
+    ref.mpm._p2g(True)
+    ref.mpm._solve(ref.dt, ref.time, True)
+    every = np.ravel_multi_index(tuple(gidx), ref.mpm.grid.shape)
+    assert rel_diff(g.vel[0], ref.mpm.grid.vel[0, every]) < 1e-10
+
+
 def test_migration_conserves_count_mass_momentum_and_gids():
     dist = world()
     sim = dam_break().simulation(dist=dist)
