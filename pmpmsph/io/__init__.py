@@ -1,6 +1,7 @@
 """Output: HDF5 particle snapshots, their XDMF sidecar, and the diagnostics CSV table."""
 from .diagnostics import DiagnosticsCSV, read_diagnostics
-from .snapshots import SnapshotWriter, list_snapshots, read_attrs, read_snapshot
+from .snapshot_read import list_snapshots, read_attrs, read_snapshot
+from .snapshots import SnapshotWriter
 from .xdmf import rebuild_xdmf_main, write_xdmf
 
 __all__ = [

@@ -19,7 +19,7 @@ the 3x3 matrix of particle i (the XDMF sidecar declares them as ``Tensor`` with 
 ``N 3 3``, which ParaView/VTK read as 9-component arrays). Fields named in ``symmetric`` are
 stored as their 6 independent components (n_total, 6) in the XDMF ``Tensor6`` order xx, xy,
 xz, yy, yz, zz, with the dataset attribute ``symmetric`` naming that order;
-:func:`read_snapshot` expands them to (n, 3, 3), and so does VTK's XDMF2 reader, but
+:func:`pmpmsph.io.snapshot_read.read_snapshot` expands them to (n, 3, 3), and so does VTK's XDMF2 reader, but
 ParaView's XDMF3 reader shows the 6 raw components under VTK's labels (xx, yy, zz, xy, yz,
 xz), so a run stores its stress in full. Boolean fields are stored as uint8.
 
@@ -46,7 +46,7 @@ dropped, the numbering goes on, and the root ``layout`` becomes ``mixed`` if the
 writes differently (per-rank parts of earlier snapshots are kept and still referenced).
 
 The file is opened for each snapshot and closed again, so between writes it is complete on
-disk: a reader (ParaView, ``read_snapshot``) can open it while the run goes on or after a
+disk: a reader (ParaView, ``io.snapshot_read.read_snapshot``) can open it while the run goes on or after a
 crash. HDF5 file locking is switched off for the same reason (a viewer holding the file
 must not stop the run). After each snapshot rank 0 rewrites the XDMF sidecar ``RUN.xdmf``.
 """
@@ -54,7 +54,6 @@ import glob
 import logging
 import os
 import re
-from collections import namedtuple
 
 import h5py
 import numpy as np
@@ -73,7 +72,6 @@ SYM_ATTR = "xx xy xz yy yz zz"
 # counts of many ranks) do not hit the 64 KiB object-header limit.
 LIBVER = ("v108", "latest")
 
-SnapshotInfo = namedtuple("SnapshotInfo", "index name step time n_total")
 
 
 def code_version():
@@ -140,16 +138,6 @@ def _storage_array(name, arr, float_dtype=None, symmetric=False):
             packed[:, k] = arr[:, i, j]
         return packed
     return arr.astype(dtype, copy=False)
-
-
-def unpack_symmetric(arr):
-    """(n, 6) components in the stored order -> (n, 3, 3) symmetric tensors (same dtype)."""
-    arr = np.asarray(arr)
-    full = np.empty((arr.shape[0], 3, 3), dtype=arr.dtype)
-    for k, (i, j) in enumerate(SYM_ORDER):
-        full[:, i, j] = arr[:, k]
-        full[:, j, i] = arr[:, k]
-    return full
 
 
 class SnapshotWriter:
@@ -481,57 +469,3 @@ def _write_slice(dset, offset, arr, collective):
         dxpl = h5py.h5p.create(h5py.h5p.DATASET_XFER)
         dxpl.set_dxpl_mpio(h5py.h5fd.MPIO_COLLECTIVE)
     dset.id.write(mspace, fspace, buf, dxpl=dxpl)
-
-
-# -- reading (serial, any layout) -------------------------------------------------------------
-def list_snapshots(path):
-    """The snapshots of a run file, in order, as SnapshotInfo(index, name, step, time, n_total)."""
-    out = []
-    with open_h5(os.fspath(path), "r") as f:
-        grp = f.get(GROUP)
-        if grp is None:
-            raise ValueError(f"{path} is not a pmpmsph snapshot file (no /{GROUP} group)")
-        for name in sorted(grp.keys()):
-            a = grp[name].attrs
-            out.append(SnapshotInfo(int(name), name, int(a["step"]), float(a["time"]),
-                                    int(a["n_total"])))
-    return out
-
-
-def read_snapshot(path, index=-1, fields=None, packed=False):
-    """Read one snapshot: returns (time, step, {field: array}) with fields in written order.
-
-    ``index`` counts snapshots like a Python list (-1 is the last). ``fields`` restricts the
-    names read. Works for every layout (virtual datasets are resolved by HDF5). Symmetric
-    tensors come back as (n, 3, 3), or as stored, (n, 6), with ``packed=True``. Arrays keep
-    their stored dtype (float32 for a single-precision run).
-    """
-    infos = list_snapshots(path)
-    if not infos:
-        raise IndexError(f"{path} holds no snapshots yet")
-    info = infos[index]
-    with open_h5(os.fspath(path), "r") as f:
-        grp = f[GROUP][info.name]
-        names = list(grp.keys())
-        if fields is not None:
-            missing = [k for k in fields if k not in grp]
-            if missing:
-                raise KeyError(f"snapshot {info.name} of {path} has no field(s) {missing}")
-            names = list(fields)
-        data = {}
-        for k in names:
-            dset = grp[k]
-            data[k] = dset[()]
-            if not packed and _attr_str(dset.attrs.get("symmetric")) == SYM_ATTR:
-                data[k] = unpack_symmetric(data[k])
-    return info.time, info.step, data
-
-
-def _attr_str(value):
-    return value.decode() if isinstance(value, bytes) else value
-
-
-def read_attrs(path):
-    """Root attributes of a run file (case text, code version, n_ranks, layout, user attrs)."""
-    with open_h5(os.fspath(path), "r") as f:
-        return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}

@@ -13,7 +13,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from .snapshots import list_snapshots, read_snapshot
+from .snapshot_read import list_snapshots, read_snapshot
 
 
 def _h5_of(run):

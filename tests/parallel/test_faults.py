@@ -86,7 +86,7 @@ def test_nan_mid_run_stops_all_ranks_and_the_last_checkpoint_restarts(tmp_path):
     run's final state to 1e-10."""
     import numpy as np
 
-    from pmpmsph.io.snapshots import read_snapshot
+    from pmpmsph.io.snapshot_read import read_snapshot
 
     case = tmp_path / "nan.toml"  # double-precision snapshots: compared to 1e-10 below
     case.write_text(CASE.replace("end = 100.0", "end = 0.04") + """
@@ -165,7 +165,7 @@ def test_sigkill_of_one_rank_ends_the_job_and_the_last_checkpoint_restarts(tmp_p
 
     from pmpmsph.io import read_diagnostics
     from pmpmsph.io.checkpoint import read_checkpoint
-    from pmpmsph.io.snapshots import list_snapshots, read_snapshot
+    from pmpmsph.io.snapshot_read import list_snapshots, read_snapshot
 
     case = tmp_path / "kill.toml"  # double-precision snapshots: compared to 1e-10 below
     case.write_text(CASE + """
