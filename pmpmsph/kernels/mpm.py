@@ -134,16 +134,17 @@ MOMENTUM, WITH_FORCE, FOLDED = 0, 1, 2
 
 @njit
 def grid_velocity(dim, gmass, gmom, gforce, gvel, gdv, dt, gravity, damping, mass_cutoff,
-                  mode):
+                  mode, lo, hi):
     """Nodal velocity v = p/m (mode MOMENTUM) and, with forces (WITH_FORCE), the update of
     eqs. 77-79 (lumped mass): a = (f - alpha_d m v)/m + g,  v_new = v + a dt. `gvel` receives
     v_new (or v), `gdv` the change v_new - v (the FLIP increment). FOLDED: gmom holds
     p + dt f (`p2g` with `force_dt`), so v_new = gmom/m + g dt; there is no old velocity and
     gdv is left 0 (only PIC uses this mode). Nodes lighter than `mass_cutoff` stay at rest.
+    Only the flat node range [lo, hi) is updated (`Grid.work_range`).
     """
-    nf, nn = gmass.shape
+    nf = gmass.shape[0]
     for fld in range(nf):
-        for i in range(nn):
+        for i in range(lo, hi):
             m = gmass[fld, i]
             if m < mass_cutoff:
                 for a in range(dim):

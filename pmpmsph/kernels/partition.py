@@ -40,6 +40,20 @@ def max_abs_column(v, axis, n):
 
 
 @njit
+def column_extent(x, n):
+    """(min, max) of x[p, 0] over the rows [0, n) (n > 0); a NaN gives NaN."""
+    lo = x[0, 0]
+    hi = x[0, 0]
+    nan = 0.0  # a - a is 0, or NaN for NaN and inf: no branch, so the loop vectorises
+    for p in range(1, n):
+        a = x[p, 0]
+        lo = min(lo, a)
+        hi = max(hi, a)
+        nan += a - a
+    return lo + nan, hi + nan
+
+
+@njit
 def cell_keys(x, origin, inv_dx, strides):
     """Linear cell index of each particle (C order over the grid), for sorting by cell."""
     n, dim = x.shape

@@ -4,8 +4,17 @@ Nodes are numbered by a flat index with C-order strides over (cells + 1 + 2 pad)
 axis; `pad` layers of nodes lie outside the domain so that wide stencils of particles at a
 wall stay inside the arrays (boundary conditions act on them too). A scene without MPM
 builds no Grid.
+
+Only the node layers along axis 0 that particles can reach are reset and solved each step
+(`work_range`): a dam break in a wide tank, or a slab whose particles fill a part of it,
+does not pay for its empty nodes. Invariant: every node outside the range holds zeros, since
+the range is hulled with the previous one, so nodes the particles left are zeroed once.
 """
+import math
+
 import numpy as np
+
+from ..kernels.partition import column_extent
 
 
 class Grid:
@@ -51,6 +60,7 @@ class Grid:
         self.dv = np.zeros((nf, nn, d))
         self.mgrad = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
         self.mx = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
+        self._span = (0, 0)  # the last `work_range` (all arrays are zero outside it)
         #: the domain and the band around it in which particles may be (one cell outside)
         self.lo = self.global_origin - self.dx
         self.hi = np.array(spec.upper) + self.dx
@@ -59,13 +69,45 @@ class Grid:
         """`arr` (nfields, n_nodes[, dim]) viewed as (nfields, *shape[, dim])."""
         return arr.reshape((arr.shape[0],) + self.shape + arr.shape[2:])
 
-    def reset(self):
-        self.mass.fill(0.0)
-        self.mom.fill(0.0)
-        self.force.fill(0.0)
+    def reset(self, lo=0, hi=None):
+        """Zero the accumulators of the flat node range [lo, hi) (all nodes by default)."""
+        sl = slice(lo, hi)
+        self.mass[:, sl] = 0.0
+        self.mom[:, sl] = 0.0
+        self.force[:, sl] = 0.0
         if self.mgrad.shape[1]:
-            self.mgrad.fill(0.0)
-            self.mx.fill(0.0)
+            self.mgrad[:, sl] = 0.0
+            self.mx[:, sl] = 0.0
+
+    def work_range(self, x, n, margin, keep_lo=0, keep_hi=0):
+        """Flat node range [a, b) to reset and solve before a P2G of the rows x[:n]: the node
+        layers along axis 0 within `margin` layers of the rows' cells, and the first
+        `keep_lo` and last `keep_hi` layers (those shared with a neighbour rank, which
+        `GridHalo` exchanges), hulled with the previous range (module doc). A non-finite
+        position (a failing step) takes every node."""
+        layers = self.shape[0]
+        lo, hi = layers, 0
+        if n:
+            xmin, xmax = column_extent(x, n)
+            if not (math.isfinite(xmin) and math.isfinite(xmax)):
+                lo, hi = 0, layers
+            else:
+                o = self.node0[0]
+                lo = int(math.floor((xmin - o) * self.inv_dx)) - int(self.offset[0]) - margin
+                hi = int(math.floor((xmax - o) * self.inv_dx)) - int(self.offset[0]) + margin + 1
+        if keep_lo:
+            lo, hi = 0, max(hi, keep_lo)
+        if keep_hi:
+            lo, hi = min(lo, layers - keep_hi), layers
+        lo, hi = max(lo, 0), min(hi, layers)
+        stride = int(self.strides[0])
+        new = (lo * stride, hi * stride) if lo < hi else (0, 0)
+        old, self._span = self._span, new
+        if old[0] == old[1]:
+            return new
+        if new[0] == new[1]:
+            return old
+        return min(old[0], new[0]), max(old[1], new[1])
 
     def global_index(self):
         """Padded global node index of every local node, (dim, n_nodes)."""

@@ -86,6 +86,17 @@ class MPMStage:
         sent = self.halo.bytes_sent if hasattr(self, "halo") else 0  # a run's total
         self.halo = GridHalo(decomposition, self.grid)
         self.halo.bytes_sent = sent
+        # the node layers P2G may touch (`Grid.work_range`): a stencil and a cell of drift
+        # around the particles, plus the layers shared with neighbours along axis 0; along
+        # another slab axis those layers are not contiguous, so the whole grid is kept
+        ghost = int(self.case.grid.ghost)
+        self._margin = ghost + 1
+        shared = 2 * ghost + 1  # a neighbour's ghosts and ours (`GridHalo.sum`), and one more
+        every = self.grid.shape[0]
+        self._keep = ((shared if decomposition.left is not None else 0,
+                       shared if decomposition.right is not None else 0)
+                      if decomposition.axis == 0 else (every, every))
+        self._span = (0, self.grid.n_nodes)
 
     @contextmanager
     def detached(self):
@@ -153,7 +164,8 @@ class MPMStage:
         t = self.timers
         fold = with_force and self.fold_force
         with t.phase("p2g"):
-            g.reset()
+            self._span = g.work_range(p["x"], n, self._margin, *self._keep)
+            g.reset(*self._span)
             p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n],
                 p["sigma"][:n], fext, lp, self._domain_F(n), pfield, g.node0, g.offset,
                 g.inv_dx, g.strides, g.mass, g.mom,
@@ -172,7 +184,7 @@ class MPMStage:
         with self.timers.phase("grid"):
             mode = ((FOLDED if self.fold_force else WITH_FORCE) if with_force else MOMENTUM)
             grid_velocity(self.dim, g.mass, g.mom, g.force, g.vel, g.dv, dt, self.gravity,
-                          self.damping, self.mass_cutoff, mode)
+                          self.damping, self.mass_cutoff, mode, *self._span)
             if self.multi:
                 multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv,
                                     self.friction, self.mass_cutoff, self.contact_gap)
