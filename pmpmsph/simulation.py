@@ -145,6 +145,8 @@ class Simulation(Restart):
             if self.mpm is not None:
                 with self.mpm.detached():
                     self.mpm.step(1e-30, 0.0)
+                    if self.mpm.conservative:  # (its rows are empty in the dry step)
+                        self.mpm._grid_force_kick(1e-30)
                 g = self.mpm.grid
                 cell_keys(p["x"], g.origin, g.inv_dx, g.strides)
             if self.sph is not None:

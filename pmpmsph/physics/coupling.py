@@ -42,8 +42,11 @@ Two interfaces (`[coupling] interface`):
     Momentum is conserved to round-off and energy as well as in pure MPM (scene 8), but the
     two halves of the interface traction (the MPM block's grid surface force, shared by
     mass, and the SPH pair reactions) are different discretisations that do not cancel:
-    a uniform stress leaves forces of up to 0.38 sigma on the interface particles, so a
-    statically loaded bar (scene 9) does not settle. For wave problems, not for loads.
+    a uniform stress leaves forces on the two particles either side of the interface (up
+    to 0.08 sigma with h = 1.3 spacing, 0.14 sigma with h = cell size in 1D), and under a
+    sustained load their constant part accumulates in the MPM points' sub-grid (FLIP)
+    velocities, which the grid cannot see: a statically loaded bar (scene 9) does not
+    settle. For wave problems, not for loads.
 """
 import numpy as np
 
