@@ -191,13 +191,11 @@ class MPMStage:
             self.bcs.apply(time, g.vel, g.dv)
         if self.halo_enabled:
             with self.timers.phase("halo"):
+                # (every rank the same arrays, transition rows or not: a collective)
                 self.halo.broadcast([g.vel, g.dv] + ([g.mass, g.force] if with_force
-                                                     and self._kicks() else []))
-        if with_force and self._kicks():
+                                                     and self.conservative else []))
+        if with_force and self.conservative and self.n_p2g > self.n_g2p:
             self._grid_force_kick(dt)
-
-    def _kicks(self):
-        return self.conservative and self.n_p2g > self.n_g2p
 
     def _grid_force_kick(self, dt):
         """The transition SPH rows take their share of the nodal forces (conservative
