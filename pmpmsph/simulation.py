@@ -145,6 +145,8 @@ class Simulation(Restart):
             if self.mpm is not None:
                 with self.mpm.detached():
                     self.mpm.step(1e-30, 0.0)
+                    if self.mpm.conservative:  # (its rows are empty in the dry step)
+                        self.mpm._grid_force_kick(1e-30)
                 g = self.mpm.grid
                 cell_keys(p["x"], g.origin, g.inv_dx, g.strides)
             if self.sph is not None:
@@ -305,6 +307,7 @@ class Simulation(Restart):
         if self.coupling is not None:
             with self.timers.phase("coupling"):
                 self.coupling.prepare()
+            self.coupling.before_mpm(self.dt)
         fused = None  # this rank's CFL signal speed from G2P, when valid for the new state
         if self.mpm is not None:
             bad = self.mpm.step(self.dt, self.time)
@@ -314,9 +317,13 @@ class Simulation(Restart):
         if self.coupling is not None:
             self.coupling.after_mpm()
         if self.sph is not None:
-            bad_sph = self.sph.step(self.dt, self.time)
+            kicked = self.coupling is not None and self.coupling.conservative
+            bad_sph = (self.sph.step(self.dt, self.time, kicked=True) if kicked
+                       else self.sph.step(self.dt, self.time))
             bad = bad if bad >= 0 else bad_sph
             self.particles.drop_halo()
+            if kicked:
+                self.coupling.after_sph(self.dt)
         if self.prescribed is not None:
             self.prescribed.apply(self.time, self.dt, x_before)
         dec = self.decomposition

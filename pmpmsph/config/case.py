@@ -147,6 +147,10 @@ class MethodRegion:
 @dataclass(frozen=True)
 class CouplingSpec:
     handover: bool = False      # relabel particles that cross a region boundary
+    # "seed": seed 000 §4 as written (transition SPH stresses in P2G, MPM stresses in the
+    # SPH sums); "conservative": each particle's stress acts through the discretisation
+    # of its own strain rate (physics/coupling.py)
+    interface: str = "seed"
 
 
 @dataclass(frozen=True)

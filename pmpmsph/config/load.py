@@ -436,7 +436,9 @@ def case_from_dict(data, name="case", text=""):
         raise ConfigError("grid", "MPM bodies need a [grid] section")
     regions = tuple(_method_region(rt, dim) for rt in root.subs("regions"))
     coup_t = root.sub("coupling", {})
-    coupling = CouplingSpec(handover=coup_t.boolean("handover", False))
+    coupling = CouplingSpec(handover=coup_t.boolean("handover", False),
+                            interface=coup_t.string("interface", "seed",
+                                                    choices=("seed", "conservative")))
     coup_t.finish()
     if coupling.handover and not regions:
         raise ConfigError("coupling.handover", "handover needs [[regions]] to hand over at")
@@ -450,6 +452,11 @@ def case_from_dict(data, name="case", text=""):
         raise ConfigError("sph", "an [sph] section but no body with method = \"sph\"")
     sph = _sph(sph_t if sph_t is not None else Table({}, "sph"), dim, bodies,
                materials, grid, coupled) if has_sph else None
+    if coupled and coupling.interface == "conservative" and (
+            sph.integrator != "verlet" or sph.formulation != "updated"):
+        raise ConfigError("coupling.interface", "the conservative interface interleaves the "
+                          "SPH kicks with the MPM step: it needs sph.integrator = \"verlet\" "
+                          "and the updated formulation")
     dom_t = root.sub("domain", None)
     if dom_t is not None:
         domain = _domain(dom_t, dim)

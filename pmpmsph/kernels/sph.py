@@ -265,7 +265,7 @@ def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, inde
 @njit
 def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
               start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
-              acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid):
+              acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
@@ -320,6 +320,13 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     particle pushes the MPM body as much as it is pushed (momentum is exchanged, not made),
     applied by the caller as an external force in the next P2G.
 
+    With a non-empty `fcpl` (the conservative MPM-SPH coupling, `physics.coupling`), a pair
+    of one SPH and one MPM point of the same material is one-sided: only the SPH end's
+    stress acts through it (t = S_sph - Pi, the MPM point's stress acts through the grid),
+    and the owned MPM end takes the reaction fcpl_b = -m_a m_b (pair term), so the pair
+    force is the adjoint of the SPH particle's velocity gradient L_a, which sums over the
+    MPM neighbours too (see the module docstring of `physics.coupling`).
+
     With a non-empty `corr_tag` (`[sph] correction = true`) the kernel gradient is corrected
     with the matrices B_a = (M_a^T)^-1 of `kernels.sph_correction` (Bonet & Lok 1999):
     with G_ab = B_a grad_a W_ab and G_ba = B_b grad_b W_ba = -B_b grad_a W_ab,
@@ -339,11 +346,17 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     corr = len(corr_tag) > 0
     eps2 = 0.01 * h * h
     h4 = 4.0 * h * h
-    if want_fsi:
+    if fcpl is None:  # (not coupled, or the seed's interface)
+        fcpl = np.zeros((0, dim))
+    one_sided = fcpl.shape[0] > 0
+    if want_fsi or one_sided:
         for a in range(n_query):
             if method[a] == MPM:
                 for i in range(dim):
-                    fsi[a, i] = 0.0
+                    if want_fsi:
+                        fsi[a, i] = 0.0
+                    if one_sided:
+                        fcpl[a, i] = 0.0
     for a in range(n_query):
         if method[a] == SPH:
             drho[a] = 0.0
@@ -369,7 +382,12 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
             fsi_a = mpm_a and method[b] == SPH and mat[a] != mat[b]
             fsi_b = (want_fsi and upd_a and method[b] == MPM and b < n_query
                      and mat[a] != mat[b])
-            if not (upd_a or upd_b or fsi_a):
+            # a same-material SPH-MPM pair of the conservative coupling (docstring)
+            one = (one_sided and mat[a] == mat[b] and method[a] != WALL
+                   and method[b] != WALL and method[a] != method[b])
+            cpl_a = one and method[a] == MPM
+            cpl_b = one and method[b] == MPM and b < n_query
+            if not (upd_a or upd_b or fsi_a or cpl_a):
                 continue
             xab0 = xa0 - x[b, 0]
             xab1 = xa1 - x[b, 1] if dim > 1 else 0.0
@@ -461,13 +479,15 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                 t1 = -pi if dim > 1 else 0.0
                 t2 = -pi if dim > 2 else 0.0
                 t3 = t4 = t5 = 0.0
-            elif mat[a] == mat[b]:
-                t0 = S[a, 0] + S[b, 0] - pi
-                t1 = S[a, 1] + S[b, 1] - pi if dim > 1 else 0.0
-                t2 = S[a, 2] + S[b, 2] - pi if dim > 2 else 0.0
-                t3 = S[a, 3] + S[b, 3] if dim > 1 else 0.0
-                t4 = S[a, 4] + S[b, 4] if dim > 2 else 0.0
-                t5 = S[a, 5] + S[b, 5] if dim > 2 else 0.0
+            elif mat[a] == mat[b]:  # (only the SPH end's stress in a one-sided pair)
+                sa = 0.0 if cpl_a else 1.0
+                sb = 0.0 if one and not cpl_a else 1.0
+                t0 = sa * S[a, 0] + sb * S[b, 0] - pi
+                t1 = sa * S[a, 1] + sb * S[b, 1] - pi if dim > 1 else 0.0
+                t2 = sa * S[a, 2] + sb * S[b, 2] - pi if dim > 2 else 0.0
+                t3 = sa * S[a, 3] + sb * S[b, 3] if dim > 1 else 0.0
+                t4 = sa * S[a, 4] + sb * S[b, 4] if dim > 2 else 0.0
+                t5 = sa * S[a, 5] + sb * S[b, 5] if dim > 2 else 0.0
             else:  # material interface: compressive pressure only (docstring)
                 pa = -(S[a, 0] + S[a, 1] + S[a, 2]) * rho[a] * rho[a] / 3.0
                 pb = -(S[b, 0] + S[b, 1] + S[b, 2]) * rho[b] * rho[b] / 3.0
@@ -496,6 +516,11 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
             f1 = t3 * g0 + t1 * g1 + t4 * g2 if dim > 1 else 0.0
             f2 = t5 * g0 + t4 * g1 + t2 * g2 if dim > 2 else 0.0
             if corr and mat[a] == mat[b]:  # + S_a B_a g + S_b B_b g
+                if one:  # (the SPH end's term alone; ca, cb are not used after this)
+                    if cpl_a:
+                        ca0 = ca1 = ca2 = 0.0
+                    else:
+                        cb0 = cb1 = cb2 = 0.0
                 f0 += S[a, 0] * ca0 + S[b, 0] * cb0
                 if dim > 1:
                     f0 += S[a, 3] * ca1 + S[b, 3] * cb1
@@ -529,6 +554,18 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                     fsi[b, 1] -= ma * mb * f1
                 if dim > 2:
                     fsi[b, 2] -= ma * mb * f2
+            if cpl_a:  # the same reactions, for the conservative coupling's own kick
+                fcpl[a, 0] += ma * mb * f0
+                if dim > 1:
+                    fcpl[a, 1] += ma * mb * f1
+                if dim > 2:
+                    fcpl[a, 2] += ma * mb * f2
+            if cpl_b:
+                fcpl[b, 0] -= ma * mb * f0
+                if dim > 1:
+                    fcpl[b, 1] -= ma * mb * f1
+                if dim > 2:
+                    fcpl[b, 2] -= ma * mb * f2
     for a in range(n_query):
         if method[a] != SPH:
             continue

@@ -13,6 +13,40 @@ prefix of the owned rows and G2P over a shorter one; the order is restored only 
 membership changed or migration moved rows. With `handover`, a particle that crosses a
 method-region boundary is relabelled (a change of `method`, nothing else: the state is
 shared).
+
+Two interfaces (`[coupling] interface`):
+  * "seed" (default; seed 000 §4 as written): the transition SPH particles' stresses enter
+    P2G (so they push the MPM points through the grid) and the MPM points' stresses enter
+    the SPH sums (S_a + S_b). Each particle's momentum equation is then a consistent
+    divergence of the stress field: a uniform stress is an exact equilibrium at the
+    interface (the patch test; tests/verification/test_coupled.py). But the force that a
+    particle's stress exerts on the other side is not the adjoint of the strain rate that
+    particle measures from it: an SPH particle's L sees its MPM neighbours through the
+    kernel while its stress pushes them through the grid, and an MPM point's L sees the
+    SPH momentum on the grid while its stress pushes the SPH particles through the kernel.
+    So the interface forces are neither equal and opposite (momentum) nor work-conjugate
+    (energy); for a two-cell wave (scene 8, k = 10) the energy drifts by 41 %.
+  * "conservative": every particle's stress acts through the discretisation of its own
+    strain rate, on every particle whose velocity that strain rate reads:
+      - an MPM point's L comes from the grid velocities, which hold the transition SPH
+        momentum: its stress (alone in the P2G force) pushes every P2G particle through
+        the grid, the transition SPH particles too (`kernels.coupling.grid_force_kick`);
+        the SPH particles' stresses stay out of P2G;
+      - an SPH particle's L sums over its MPM neighbours too: its stress pushes them
+        through the kernel, as a pair reaction (`fcpl`, sph_rates' one-sided pairs) kicked
+        straight into the MPM points' velocities (through the grid, which cannot carry a
+        two-cell wave, the work would not match);
+      - all particles take the same Verlet kicks: the SPH and MPM rows get their pair
+        forces as half kicks before the MPM step and after the SPH evaluation, so P2G
+        carries every particle's momentum at the same stage (`before_mpm`, `after_sph`).
+    Momentum is conserved to round-off and energy as well as in pure MPM (scene 8), but the
+    two halves of the interface traction (the MPM block's grid surface force, shared by
+    mass, and the SPH pair reactions) are different discretisations that do not cancel:
+    a uniform stress leaves forces on the two particles either side of the interface (up
+    to 0.08 sigma with h = 1.3 spacing, 0.14 sigma with h = cell size in 1D), and under a
+    sustained load their constant part accumulates in the MPM points' sub-grid (FLIP)
+    velocities, which the grid cannot see: a statically loaded bar (scene 9) does not
+    settle. For wave problems, not for loads.
 """
 import numpy as np
 
@@ -104,7 +138,10 @@ class Coupling:
     def fields(case):
         from ..particles import FieldSpec
 
-        return [FieldSpec("fsi", ("dim",)), FieldSpec("fext", ("dim",), migrate=False)]
+        out = [FieldSpec("fsi", ("dim",)), FieldSpec("fext", ("dim",), migrate=False)]
+        if case.coupling.interface == "conservative":
+            out.append(FieldSpec("fcpl", ("dim",)))
+        return out
 
     def __init__(self, case, particles, mpm, sph):
         self.case = case
@@ -113,6 +150,7 @@ class Coupling:
         self.sph = sph
         self.dim_tag = (0,) * case.dim
         self.handover = case.coupling.handover
+        self.conservative = case.coupling.interface == "conservative"
         self.key = np.zeros(0, np.int8)
         self.loads = bool(case.loads)
         names = list(case.materials)
@@ -176,6 +214,28 @@ class Coupling:
         p = self.p
         n = self.mpm.n_g2p
         p["rho"][:n] = p["mass"][:n] / p["vol"][:n]
+
+    def before_mpm(self, dt):
+        """Conservative interface: the first half kick of the Verlet step, for the SPH rows
+        (their rates) and the MPM rows (the reactions `fcpl` of their SPH pairs), before
+        the MPM step, so that its P2G carries every particle's momentum at the same stage
+        (module docstring)."""
+        if not self.conservative:
+            return
+        self.after_mpm()  # (the first SPH evaluation needs rho of the MPM rows)
+        self.sph.kick(dt)
+        self._kick_mpm(dt)
+
+    def after_sph(self, dt):
+        """Conservative interface: the MPM rows' second half kick with the reactions of
+        the step's last SPH evaluation (at the new state), as the SPH rows get theirs."""
+        if self.conservative:
+            self._kick_mpm(dt)
+
+    def _kick_mpm(self, dt):
+        p = self.p
+        m = self.mpm.n_g2p
+        p["v"][:m] += (0.5 * dt) * p["fcpl"][:m] / p["mass"][:m, None]
 
     def _hand_over(self):
         """Relabel particles whose method region changed (walls never change)."""

@@ -13,6 +13,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from ..kernels.contact import multi_field_contact, touching_separation
+from ..kernels.coupling import grid_force_kick
 from ..kernels.mpm import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
 from ..kernels.partition import cell_keys
 from ..kernels.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
@@ -53,10 +54,14 @@ class MPMStage:
         self.pic_tag = (0,) if self.flip == 0.0 else ()  # PIC, for `kernels.mpm.g2p`
         # PIC-USL without damping needs only the updated nodal velocity, so P2G scatters
         # p + dt f into the momentum (one scatter instead of two, as Taichi's mpm88 does)
+        # (the conservative coupling needs the nodal forces apart: not folded)
+        self.conservative = case.coupled and case.coupling.interface == "conservative"
         self.fold_force = (self.transfer == "usl" and self.flip == 0.0 and self.damping == 0.0
-                           and not self.multi)
+                           and not self.multi and not self.conservative)
         # rows [0, n_p2g) take part in P2G and [0, n_g2p) are updated by G2P; None: all
-        # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone)
+        # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone).
+        # With the conservative coupling the rows [n_g2p, n_p2g) (transition SPH) scatter
+        # mass and momentum but no stress, and take the grid force (`grid_force_kick`)
         self.n_p2g = self.n_g2p = None
         self.signal = None  # max (c + |v|) after the last step, from G2P (see `step`)
 
@@ -163,15 +168,22 @@ class MPMStage:
         n, lp, fext, pfield, _, _ = self._optional(self.n_p2g)
         t = self.timers
         fold = with_force and self.fold_force
+        # rows [ns, n): mass and momentum only (the conservative coupling's SPH rows)
+        ns = self.n_g2p if self.conservative else n
+        parts = ((0, ns, with_force), (ns, n, False)) if ns < n else ((0, n, with_force),)
         with t.phase("p2g"):
             self._span = g.work_range(p["x"], n, self._margin, *self._keep)
             g.reset(*self._span)
-            p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n],
-                p["sigma"][:n], fext, lp, self._domain_F(n), pfield, g.node0, g.offset,
-                g.inv_dx, g.strides, g.mass, g.mom,
-                g.force if with_force and not fold else None,
-                g.mgrad if self.multi else None, g.mx if self.multi else None,
-                dt if fold else None)
+            for a, b, force in parts:
+                Fd = self._domain_F(n)
+                p2g(*self.tags, p["x"][a:b], p["v"][a:b], p["mass"][a:b], p["vol"][a:b],
+                    p["sigma"][a:b], fext[a:b] if fext is not None else None,
+                    lp[a:b] if lp is not None else None, Fd[a:b] if Fd is not None else None,
+                    pfield[a:b] if pfield is not None else None, g.node0, g.offset,
+                    g.inv_dx, g.strides, g.mass, g.mom,
+                    g.force if force and not fold else None,
+                    g.mgrad if self.multi else None, g.mx if self.multi else None,
+                    dt if fold and force else None)
         sums = [g.mass, g.mom] + ([g.force] if with_force and not fold else [])
         if self.multi:
             sums += [g.mgrad, g.mx]
@@ -191,6 +203,23 @@ class MPMStage:
             # node-local: ghost nodes, holding the full sums (`GridHalo.sum`), get the
             # owners' velocities bit for bit
             self.bcs.apply(time, g.vel, g.dv)
+        # (the ghosts hold the full nodal mass and force too, from `GridHalo.sum`)
+        if with_force and self.conservative and self.n_p2g > self.n_g2p:
+            self._grid_force_kick(dt)
+
+    def _grid_force_kick(self, dt):
+        """The transition SPH rows take their share of the nodal forces (conservative
+        coupling; `kernels.coupling.grid_force_kick`)."""
+        g, p = self.grid, self.p
+        a, b = self.n_g2p, self.n_p2g
+        _, lp, _, pfield, _, _ = self._optional(b)
+        Fd = self._domain_F(b)
+        with self.timers.phase("g2p"):
+            grid_force_kick(*self.tags, p["x"][a:b], p["v"][a:b],
+                            lp[a:b] if lp is not None else None,
+                            Fd[a:b] if Fd is not None else None,
+                            pfield[a:b] if pfield is not None else None, g.mass, g.force,
+                            g.node0, g.offset, g.inv_dx, g.strides, dt, self.mass_cutoff)
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p

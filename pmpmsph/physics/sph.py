@@ -163,7 +163,8 @@ class SPHStage:
                       self.start, self.index, 0.0,
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
                       p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True,
-                      np.zeros((0, self.dim)), False, self.corr_tag, self._B(), self.fluid)
+                      np.zeros((0, self.dim)), False, self.corr_tag, self._B(), self.fluid,
+                      np.zeros((0, self.dim)))
 
     def _B(self):
         return self.p.with_halo("B") if self.corr else np.zeros((0, 3, 3))
@@ -253,7 +254,8 @@ class SPHStage:
                       self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
                       p.with_halo("drho"), p.with_halo("L"), True, self.want_L,
                       p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
-                      "fsi" in p, self.corr_tag, self._B(), self.fluid)
+                      "fsi" in p, self.corr_tag, self._B(), self.fluid,
+                      p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)))
         self.evaluated = True
         self.evaluations += 1
 
@@ -345,8 +347,19 @@ class SPHStage:
                     p["F_n"], c1, dtc, p["x"], p["v"], p["rho"], p["F"], p["acc"],
                     p["drho"], p["L"], save, self.want_L)
 
-    def step(self, dt, time):
-        """Advance owned SPH particles by dt; returns a failed row or -1."""
+    def kick(self, dt):
+        """The first half kick of a Verlet step alone (v += dt/2 acc, with the first rates
+        if none yet): the conservative coupling gives it before the MPM step, whose P2G
+        then carries the SPH momentum at mid-step, and calls `step` with `kicked`."""
+        if not self.evaluated:
+            self.initialise()
+        p = self.p
+        with self.timers.phase("integrate"):
+            add_scaled(self.dim_tag, p.n_owned, p["method"], 0.5 * dt, p["v"], p["acc"])
+
+    def step(self, dt, time, kicked=False):
+        """Advance owned SPH particles by dt; returns a failed row or -1. `kicked`: the
+        first half kick of a Verlet step was given already (`kick`)."""
         p = self.p
         n = p.n_owned
         if not self.evaluated:
@@ -356,7 +369,8 @@ class SPHStage:
         if self.integrator == "verlet":
             tag, meth = self.dim_tag, p["method"]
             with self.timers.phase("integrate"):
-                add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
+                if not kicked:
+                    add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
                 add_scaled(tag, n, meth, 0.5 * dt, p["x"], p["v"])  # drift
             self.kinematics()
             with self.timers.phase("integrate"):
