@@ -3,8 +3,8 @@ rank (DESIGN.md §4 invariant), to 1e-10 relative: its fitted gradient Fh is ref
 halo and the pair forces of halo pairs are added by the owner. Run under `mpirun -n 2`."""
 import numpy as np
 import pytest
-
 from mpi_util import gathered, rel_diff, serial, world
+
 from pmpmsph import Scene
 
 pytestmark = pytest.mark.mpi

@@ -54,6 +54,7 @@ def particles(hf):
 
 
 def pairs(x, h):
+    """Full neighbour lists as pair arrays (a, b) (b = a included) and the CSR start."""
     start, index = neighbour_lists(x, len(x), 2.0 * h)
     a = np.repeat(np.arange(len(x)), np.diff(start))
     return a, index, start
@@ -187,14 +188,16 @@ def main():
     kappas = [float(k) for k in os.environ.get("KAPPA", "0").split(",")]
     x, vol, h = particles(hf)
     a, b, start = pairs(x, h)
+    other = a != b                      # the lists hold the row itself too
     for v in sys.argv[1:] or ["plain", "bl", "rkpm", "quad"]:
-        if v in ("plain", "bl"):
-            c = grad_sph(x, vol, h, a, b, v == "bl")
-        elif v == "rkpm":
-            c = grad_rkpm(x, vol, h, start, b)
+        if v == "rkpm":
+            D = operator(len(x), a, b, grad_rkpm(x, vol, h, start, b))
+        elif v in ("plain", "bl"):
+            c = grad_sph(x, vol, h, a[other], b[other], v == "bl")
+            D = operator(len(x), a[other], b[other], c)
         else:
-            c = grad_quadratic(x, vol, h, a, b)
-        D = operator(len(x), a, b, c)
+            c = grad_quadratic(x, vol, h, a[other], b[other])
+            D = operator(len(x), a[other], b[other], c)
         for kappa in kappas:
             solve(x, vol, h, D, kappa, f"{v} h={hf}dp kappa={kappa:g}")
 
