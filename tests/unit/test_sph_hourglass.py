@@ -109,3 +109,44 @@ def test_the_odd_even_mode_is_resisted():
         np.linalg.norm(acc[inner], axis=1) * np.linalg.norm(u[inner], axis=1))
     assert np.all(cos > 1 - 1e-9)
     assert np.all(np.abs(k / (2.0 * C * C / DP ** 2) - 3.41) < 0.02)
+
+
+CASE = """
+dimension = 2
+[domain]
+min = [-1.0, -1.0]
+max = [2.0, 2.0]
+[sph]
+correction = true
+hourglass = 2.0
+[materials.steel]
+model = "linear_elastic"
+E = 1.0e6
+nu = 0.3
+rho = 1000.0
+[[bodies]]
+name = "plate"
+method = "sph"
+material = "steel"
+shape = "box"
+min = [0.0, 0.0]
+max = [1.0, 1.0]
+spacing = 0.1
+[time]
+end = 0.1
+cfl = 0.3
+"""
+
+
+@pytest.mark.parametrize("old,new", [("hourglass = 2.0", "hourglass = -1.0"),
+                                     ("[sph]", '[sph]\nformulation = "total"')])
+def test_the_option_and_its_bad_values(old, new):
+    """`[sph] hourglass` (default 0: off) takes kappa >= 0, in the updated formulation only
+    (the total one has no such control)."""
+    from pmpmsph import ConfigError, load_case_text
+
+    assert load_case_text(CASE).sph.hourglass == 2.0
+    assert load_case_text(CASE.replace("hourglass = 2.0\n", "")).sph.hourglass == 0.0
+    with pytest.raises(ConfigError) as err:
+        load_case_text(CASE.replace(old, new))
+    assert err.value.key == "sph.hourglass"
