@@ -70,6 +70,8 @@ class SPHSpec:
     av_beta: float = 1.0
     artificial_stress: float = 0.0     # epsilon of Gray, Monaghan & Swift (0: off)
     artificial_stress_exponent: float = 4.0
+    hourglass: float = 0.0             # updated solids: hourglass control factor kappa
+                                       # (kernels/sph_hourglass.py; 0: off)
     damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
     wall_no_slip: bool = True          # dummy walls: no-slip or free slip
     pressure_min: float = float("-inf")  # fluids: floor of the pressure (0: no tension)

@@ -205,6 +205,15 @@ def _body_spacing(body, grid=None):
     return min((hi - lo) / c for lo, hi, c in zip(g.lo, g.hi, body.count))
 
 
+def _hourglass(t, formulation):
+    """[sph] hourglass: the factor kappa of the hourglass control (updated formulation)."""
+    kappa = t.number("hourglass", 0.0, min=0.0)
+    if kappa > 0.0 and formulation != "updated":
+        raise ConfigError(t.key("hourglass"), "the hourglass control is for the updated "
+                          "formulation (kernels/sph_hourglass.py)")
+    return kappa
+
+
 def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     """The [sph] section; h defaults to h_factor x the particle spacing (seed 004 §2), also
     in a coupled scene. Seed 000 §4 sets h to the cell width; with its two particles per
@@ -254,6 +263,8 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         integrator=integrator, av_alpha=av_alpha, av_beta=av_beta,
         artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
+        # the odd-even mode of the corrected solid (kernels/sph_hourglass.py), off by default
+        hourglass=_hourglass(t, formulation),
         damping=t.number("damping", 0.0, min=0.0),
         wall_no_slip=walls == "no_slip",
         pressure_min=t.number("pressure_min", float("-inf")),

@@ -33,6 +33,7 @@ from ..kernels.sph import (
     wall_state,
 )
 from ..kernels.sph_correction import correction_matrices
+from ..kernels.sph_hourglass import hourglass_fit, hourglass_forces
 from ..kernels.sph_integrate import (
     add_scaled,
     advance,
@@ -87,10 +88,13 @@ class SPHStage:
         # (the total formulation corrects its own kernel: TLSPHStage, kernel_correction)
         self.corr = bool(spec.correction) and spec.formulation == "updated"
         self.corr_tag = (0,) if self.corr else ()
+        # hourglass control of the solids (kernels/sph_hourglass.py; needs X0)
+        self.hourglass = spec.hourglass if spec.formulation == "updated" else 0.0
         # per material: a fluid (Tait) meets a solid of another material through the mirror
         # pair of kernels/sph.py's sph_rates
         self.fluid = np.array([code == TAIT_FLUID for code in mtypes], np.bool_)
         self._M = np.zeros((0, 3, 3))
+        self._A = np.zeros((0, 3, 3))
         self.lo = np.array(case.domain[0], float)
         self.hi = np.array(case.domain[1], float)
         self.start = np.zeros(1, np.int64)
@@ -119,6 +123,9 @@ class SPHStage:
             out.append(FieldSpec("R", (6,), migrate=False))
         if case.sph.correction:
             out.append(FieldSpec("B", (3, 3), migrate=False, fill="identity"))
+        if case.sph.hourglass > 0.0:   # reference positions (set at seeding, build.py)
+            out += [FieldSpec("X0", ("dim",), halo=True, output=True),
+                    FieldSpec("Fh", (3, 3), migrate=False, halo=True)]
         if multi:
             out += [FieldSpec("x_n", ("dim",), migrate=False),
                     FieldSpec("v_n", ("dim",), migrate=False),
@@ -187,6 +194,24 @@ class SPHStage:
             with self.timers.phase("halo"):
                 self.halo.refresh(("B",))
 
+    def _hourglass_fit(self):
+        """The fitted deformation gradient Fh of the owned solid rows, refreshed in the halo
+        (the hourglass force needs it at both ends of a pair). No-op without the option."""
+        if self.hourglass == 0.0:
+            return
+        p = self.p
+        n = p.n_owned
+        if len(self._A) < n:
+            self._A = np.zeros((max(n, 2 * len(self._A)), 3, 3))
+        with self.timers.phase("sph"):
+            hourglass_fit(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+                          p.with_halo("X0"), p.with_halo("mass"), p.with_halo("rho"),
+                          p.with_halo("method"), p.with_halo("mat"), self.fluid, self.start,
+                          self.index, self._A, p.with_halo("Fh"))
+        if self.halo_enabled:
+            with self.timers.phase("halo"):
+                self.halo.refresh(("Fh",))
+
     def _need_rebuild(self):
         """Collective: rebuild if the rows changed or a particle moved half the skin."""
         p = self.p
@@ -237,6 +262,7 @@ class SPHStage:
                 with t.phase("halo"):
                     self.halo.refresh(("rho", "sigma", "vg"))
         self._correction(halo=True)
+        self._hourglass_fit()
         with t.phase("sph"):
             rho, sigma = p.with_halo("rho"), p.with_halo("sigma")
             sound_speeds(self.dim, nt, p.with_halo("method"), p.with_halo("mat"), rho,
@@ -256,6 +282,12 @@ class SPHStage:
                       p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
                       "fsi" in p, self.corr_tag, self._B(), self.fluid,
                       p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)))
+            if self.hourglass > 0.0:
+                hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, x,
+                                 p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),
+                                 rho, p.with_halo("cs"), p.with_halo("method"),
+                                 p.with_halo("mat"), self.fluid, self.start, self.index,
+                                 self.hourglass, p.with_halo("acc"))
         self.evaluated = True
         self.evaluations += 1
 
