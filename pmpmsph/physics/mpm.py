@@ -6,6 +6,9 @@ USF:                P2G(m, mv) -> grid v + BCs -> G2P(L, F, sigma) -> P2G(m, mv,
 MUSL (Sulsky):      P2G(m, mv, f) -> grid solve + BCs -> G2P(v, x) -> P2G(m, mv) with the
                     new particle velocities -> grid v + BCs -> G2P(L, F, sigma)
 Multi-field contact (Bardenhagen et al. 2001) runs after every grid solve when enabled.
+In a coupled scene the rows [n_stress, n_p2g) are SPH solid particles in their own velocity
+fields (`physics.sph_solid`): they scatter mass, momentum and their SPH force (no stress), and
+take back the velocity change the contact of the force solve made to their field.
 PIC-USL without damping scatters p + dt f in one go (`fold_force`, mpm88's form).
 """
 from contextlib import contextmanager
@@ -16,6 +19,7 @@ from ..kernels.contact import multi_field_contact, touching_separation
 from ..kernels.mpm import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
 from ..kernels.partition import cell_keys
 from ..kernels.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
+from ..kernels.sph_solid import gather_increment
 from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
@@ -57,7 +61,7 @@ class MPMStage:
                            and not self.multi)
         # rows [0, n_p2g) take part in P2G and [0, n_g2p) are updated by G2P; None: all
         # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone)
-        self.n_p2g = self.n_g2p = None
+        self.n_p2g = self.n_g2p = self.n_stress = None
         self.signal = None  # max (c + |v|) after the last step, from G2P (see `step`)
 
     @property
@@ -67,6 +71,16 @@ class MPMStage:
     @n_p2g.setter
     def n_p2g(self, value):
         self._n_p2g = value
+
+    @property
+    def n_stress(self):
+        """Rows [0, n_stress) scatter their stress; [n_stress, n_p2g) are SPH solids in
+        contact (physics.sph_solid)."""
+        return self.n_p2g if self._n_stress is None else self._n_stress
+
+    @n_stress.setter
+    def n_stress(self, value):
+        self._n_stress = value
 
     @property
     def n_g2p(self):
@@ -152,14 +166,23 @@ class MPMStage:
         n, lp, fext, pfield, _, _ = self._optional(self.n_p2g)
         t = self.timers
         fold = with_force and self.fold_force
+        ns = min(self.n_stress, n)
+        F = self._domain_F(n)
         with t.phase("p2g"):
             g.reset()
-            p2g(*self.tags, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol"][:n],
-                p["sigma"][:n], fext, lp, self._domain_F(n), pfield, g.node0, g.offset,
-                g.inv_dx, g.strides, g.mass, g.mom,
-                g.force if with_force and not fold else None,
-                g.mgrad if self.multi else None, g.mx if self.multi else None,
-                dt if fold else None)
+            for lo, hi in ((0, ns), (ns, n)):
+                if hi == lo and lo > 0:
+                    continue
+                # SPH solids in contact carry their stress in their SPH force (`fext`)
+                sigma = p["sigma"][lo:hi] if lo == 0 else np.zeros((hi - lo, 3, 3))
+                p2g(*self.tags, p["x"][lo:hi], p["v"][lo:hi], p["mass"][lo:hi],
+                    p["vol"][lo:hi], sigma, None if fext is None else fext[lo:hi],
+                    None if lp is None else lp[lo:hi], None if F is None else F[lo:hi],
+                    None if pfield is None else pfield[lo:hi], g.node0, g.offset,
+                    g.inv_dx, g.strides, g.mass, g.mom,
+                    g.force if with_force and not fold else None,
+                    g.mgrad if self.multi else None, g.mx if self.multi else None,
+                    dt if fold else None)
         sums = [g.mass, g.mom] + ([g.force] if with_force and not fold else [])
         if self.multi:
             sums += [g.mgrad, g.mx]
@@ -173,13 +196,26 @@ class MPMStage:
             mode = ((FOLDED if self.fold_force else WITH_FORCE) if with_force else MOMENTUM)
             grid_velocity(self.dim, g.mass, g.mom, g.force, g.vel, g.dv, dt, self.gravity,
                           self.damping, self.mass_cutoff, mode)
+            # the SPH solids in contact take the contact's change of their fields, once a
+            # step (the solve with forces)
+            gather = with_force and self.multi and self.n_p2g > self.n_stress
+            if gather:
+                before = g.vel.copy()
             if self.multi:
                 multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv,
                                     self.friction, self.mass_cutoff, self.contact_gap)
+            if gather:
+                dvc = g.vel - before
             self.bcs.apply(time, g.vel, g.dv)
         if self.halo_enabled:
             with self.timers.phase("halo"):
-                self.halo.broadcast([g.vel, g.dv])
+                self.halo.broadcast([g.vel, g.dv] + ([dvc] if gather else []))
+        if gather:
+            p = self.p
+            with self.timers.phase("g2p"):
+                gather_increment(*self.tags, self.n_stress, self.n_p2g, p["x"], p["v"],
+                                 p["lp"] if "lp" in p else None, p["body"], dvc, g.node0,
+                                 g.offset, g.inv_dx, g.strides)
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p
