@@ -47,7 +47,7 @@ class MPMStage:
         self.halo_enabled = True
         self.timers = timers if timers is not None else Timers()
         self.set_decomposition(decomposition)
-        self.contact_gap = self._contact_gap() if self.multi else 0.0
+        self.contact_gap = spec.contact_gap * self._contact_gap() if self.multi else 0.0
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
         self.mtypes, self.mparams = materials
