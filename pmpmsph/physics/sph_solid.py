@@ -59,7 +59,9 @@ about 5 s to settle, and released on the surface (the thesis' start; contact_gap
 at 1 cm/s, to a draft of only 0.05 by t = 1.8 s. With FLIP (contact_gap 1) the block drops
 and bobs at the right pace but overshoots: flip = 0.9 reaches Archimedes' draft at t = 0.8 s
 and goes on sinking (0.1152 at t = 1.8 s), flip = 0.99 0.1193 (+5 %), flip = 1 rings
-(kinetic energy 0.6 J at t = 1.8 s).
+(kinetic energy 0.6 J at t = 1.8 s); with contact_gap 1.5, flip = 0.9 passes Archimedes at
+t = 2.7 s and sinks on (0.1143 at t = 3), flip = 0.99 reaches it at t = 1.8 s and bobs about
+it (0.1132-0.1138 over t = 1.8-3 s) while the water closes in to 0.49 spacing.
 """
 import numpy as np
 
