@@ -13,10 +13,9 @@ in which sums:
     (physics/sph_solid.py).
 Rows are kept ordered MPM | transition SPH | SPH solids in contact | other SPH (walls) so
 that P2G runs over one prefix of the owned rows and G2P over a shorter one; the order is
-restored only when
-membership changed or migration moved rows. With `handover`, a particle that crosses a
-method-region boundary is relabelled (a change of `method`, nothing else: the state is
-shared).
+restored only when membership changed or migration moved rows. With `handover`, a
+particle that crosses a method-region boundary is relabelled (a change of `method`, nothing
+else: the state is shared).
 """
 import numpy as np
 
@@ -57,8 +56,8 @@ def mark_mpm_cells(dim_tag, n, x, method, mat, material, origin, inv_dx, strides
 
 
 @njit
-def transition_keys(dim_tag, n, x, method, mat, select, value, origin, inv_dx, strides, shape,
-                    mark, key):
+def transition_keys(dim_tag, n, x, method, mat, select, value, origin, inv_dx, strides,
+                    shape, mark, key):
     """For the SPH rows of the materials with `select[mat]`: key = min(key, value) if within
     one cell of a marked cell (a marked node among the nodes of the 3^dim cells around its
     own). With value < 0 instead initialise: key = 0 for MPM rows, REST for all others."""
