@@ -86,6 +86,11 @@ class Simulation(Restart):
                 self.rebalance()
         if self.sph is not None and case.sph.hydrostatic:  # initial condition (collective)
             self.sph.hydrostatic_start()
+            if self.mpm is not None:  # and the MPM fluids of a coupled scene
+                from .physics.sph_solid import hydrostatic_mpm
+
+                hydrostatic_mpm(case, self.particles, self.materials, case.gravity,
+                                self.dist)
         self.h = min(min(case.grid.cell_size) if case.grid else np.inf,
                      case.sph.h if case.sph else np.inf)
         self.dt = self._initial_dt()
@@ -154,7 +159,7 @@ class Simulation(Restart):
             if self.coupling is not None:
                 with self.mpm.detached():
                     self.coupling.prepare()
-                self.mpm.n_p2g = self.mpm.n_g2p = None
+                self.mpm.n_p2g = self.mpm.n_g2p = self.mpm.n_stress = None
             mtypes, mparams = self.materials
             mstate = p["mstate"] if "mstate" in p else np.zeros((0, 0))
             particle_sums(self.dim, p["x"], p["v"], p["mass"], p["vol0"], p.deformation(),

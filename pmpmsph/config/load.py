@@ -418,6 +418,7 @@ def case_from_dict(data, name="case", text=""):
         mass_cutoff=mpm_t.number("mass_cutoff", 1e-10, min=0.0),
         contact=mpm_t.string("contact", "single", choices=CONTACTS),
         friction=mpm_t.number("friction", 0.0, min=0.0),
+        contact_gap=mpm_t.number("contact_gap", 1.0, min=0.0),
         cpdi_reach=mpm_t.number("cpdi_reach", 2, integer=True, min=1, max=8),
         deformation=mpm_t.string("deformation", "auto", choices=("auto", "F", "J")),
     )

@@ -309,7 +309,10 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     fluid behind it pushes it towards them (with a factor 1, the interface particle is
     pressed into the solid by half its pressure load).
     The continuity and force of these pairs use the plain kernel gradient (also with the
-    correction below), so that (i) holds with it.
+    correction below), so that (i) holds with it. A solid's own drho and L (hence its F and
+    stress) leave such a fluid neighbour out: the fluid acts on it by pressure alone (an SPH
+    solid in MPM water sheared with the water's velocities and blew up;
+    physics/sph_solid.py).
     Other material interfaces (two solids, two fluids) keep the contact pressure
     p_c = max(p_a, p_b, 0) on both ends, -p_c (1/rho_a^2 + 1/rho_b^2) I: the full sigma/rho^2
     term would let a solid in tension pull the other body's particles into it; within one
@@ -424,18 +427,22 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
             # a fluid-solid pair: the solid point is the fluid's mirror (docstring)
             mirror_a = mat[a] != mat[b] and fluid[mat[a]] and not fluid[mat[b]]
             mirror_b = mat[a] != mat[b] and fluid[mat[b]] and not fluid[mat[a]]
-            if upd_a:
+            # a solid's own kinematics (drho, L) ignore a fluid neighbour of another
+            # material: that fluid acts on it by pressure only (docstring)
+            kin_a = upd_a and not mirror_b
+            kin_b = upd_b and not mirror_a
+            if kin_a:
                 if mirror_a:
                     drho[a] += 2.0 * rho[a] * mb / rho[b] * (vab0 * g0 + vab1 * g1 + vab2 * g2)
                 else:
                     drho[a] += mb * (vab0 * ca0 + vab1 * ca1 + vab2 * ca2)
-            if upd_b:
+            if kin_b:
                 if mirror_b:
                     drho[b] += 2.0 * rho[b] * ma / rho[a] * (vab0 * g0 + vab1 * g1 + vab2 * g2)
                 else:
                     drho[b] += ma * (vab0 * cb0 + vab1 * cb1 + vab2 * cb2)
             if want_L:
-                if upd_a:  # m_b (v~_b - v_a) (x) G_ab
+                if kin_a:  # m_b (v~_b - v_a) (x) G_ab
                     u0 = mb * (vg[b, 0] - va0)
                     L[a, 0, 0] += u0 * ca0
                     if dim > 1:
@@ -450,7 +457,7 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                         L[a, 2, 0] += u2 * ca0
                         L[a, 2, 1] += u2 * ca1
                         L[a, 2, 2] += u2 * ca2
-                if upd_b:  # m_a (v~_a - v_b) (x) G_ba, G_ba = -B_b g
+                if kin_b:  # m_a (v~_a - v_b) (x) G_ba, G_ba = -B_b g
                     w0 = -ma * (vg[a, 0] - v[b, 0])
                     L[b, 0, 0] += w0 * cb0
                     if dim > 1:

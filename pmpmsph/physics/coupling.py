@@ -7,12 +7,15 @@ in which sums:
     mass, momentum and stress, but are updated by SPH;
   * MPM particles within the support of SPH particles are SPH neighbours (they carry
     rho = m/V, sigma, v like any SPH particle), but are updated by MPM;
-  * each particle is updated by the scheme of its own method.
-Rows are kept ordered MPM | transition SPH | other SPH (walls) so that P2G runs over one
-prefix of the owned rows and G2P over a shorter one; the order is restored only when
-membership changed or migration moved rows. With `handover`, a particle that crosses a
-method-region boundary is relabelled (a change of `method`, nothing else: the state is
-shared).
+  * each particle is updated by the scheme of its own method;
+  * SPH solid particles near an MPM fluid of another material (with [mpm] contact = "multi")
+    take part in P2G in their own velocity field, in contact with the fluid's on the grid
+    (physics/sph_solid.py).
+Rows are kept ordered MPM | transition SPH | SPH solids in contact | other SPH (walls) so
+that P2G runs over one prefix of the owned rows and G2P over a shorter one; the order is
+restored only when membership changed or migration moved rows. With `handover`, a
+particle that crosses a method-region boundary is relabelled (a change of `method`, nothing
+else: the state is shared).
 
 Two interfaces (`[coupling] interface`):
   * "seed" (default; seed 000 §4 as written): the transition SPH particles' stresses enter
@@ -51,9 +54,12 @@ Two interfaces (`[coupling] interface`):
 import numpy as np
 
 from ..jit import njit
+from .sph_solid import solid_force
 
 MPM = 0
 SPH = 1
+#: row keys: MPM, transition SPH (same material), SPH solid in contact, the rest
+TRANSITION, CONTACT, REST = 1, 2, 3
 
 
 @njit
@@ -84,18 +90,18 @@ def mark_mpm_cells(dim_tag, n, x, method, mat, material, origin, inv_dx, strides
 
 
 @njit
-def transition_keys(dim_tag, n, x, method, mat, material, origin, inv_dx, strides, shape,
-                    mark, key):
-    """For the SPH rows of `material`: key = 1 if within one cell of a marked cell (a marked
-    node among the nodes of the 3^dim cells around its own). With material < 0 instead
-    initialise: key = 0 for MPM rows, 2 for all others."""
+def transition_keys(dim_tag, n, x, method, mat, select, value, origin, inv_dx, strides,
+                    shape, mark, key):
+    """For the SPH rows of the materials with `select[mat]`: key = min(key, value) if within
+    one cell of a marked cell (a marked node among the nodes of the 3^dim cells around its
+    own). With value < 0 instead initialise: key = 0 for MPM rows, REST for all others."""
     dim = len(dim_tag)
     c = np.zeros(3, np.int64)
     for p in range(n):
-        if material < 0:
-            key[p] = 0 if method[p] == MPM else 2
+        if value < 0:
+            key[p] = 0 if method[p] == MPM else REST
             continue
-        if method[p] != SPH or mat[p] != material:
+        if method[p] != SPH or not select[mat[p]] or key[p] <= value:
             continue
         for a in range(dim):
             c[a] = int(np.floor((x[p, a] - origin[a]) * inv_dx))
@@ -120,7 +126,7 @@ def transition_keys(dim_tag, n, x, method, mat, material, origin, inv_dx, stride
                     if mark[idx] > 0.0:
                         found = True
         if found:
-            key[p] = 1
+            key[p] = value
 
 
 @njit
@@ -156,6 +162,17 @@ class Coupling:
         names = list(case.materials)
         self.mpm_materials = sorted({names.index(b.material) for b in case.bodies
                                      if b.method == "mpm" or case.regions})
+        from ..materials.codes import TAIT_FLUID
+
+        fluid = np.array([m.type_code == TAIT_FLUID for m in case.materials.values()])
+        # per MPM material: the materials whose SPH rows join its P2G, and how
+        self._joins = []
+        for material in self.mpm_materials:
+            same = np.arange(len(names)) == material
+            self._joins.append((material, same, TRANSITION))
+            if fluid[material] and case.mpm.contact == "multi":
+                self._joins.append((material, ~fluid & ~same, CONTACT))
+        self.gravity = np.array(case.gravity, float)
         self.reorders = 0
         self.handed_over = 0
 
@@ -171,7 +188,8 @@ class Coupling:
         return mark[0], shape
 
     def prepare(self):
-        """Order rows MPM | transition SPH | rest; tell the MPM stage its two prefixes."""
+        """Order rows MPM | transition SPH | SPH solids in contact | rest; tell the MPM stage
+        its three prefixes."""
         p = self.p
         n = p.n_owned
         p.drop_halo()
@@ -182,14 +200,18 @@ class Coupling:
         key = self.key[:n]
         g = self.mpm.grid
         shape = np.array(g.shape, np.int64)
-        transition_keys(self.dim_tag, n, p["x"], p["method"], p["mat"], -1, g.origin,
-                        g.inv_dx, g.strides, shape, np.zeros(1), key)
+        transition_keys(self.dim_tag, n, p["x"], p["method"], p["mat"], np.zeros(1, np.bool_),
+                        -1, g.origin, g.inv_dx, g.strides, shape, np.zeros(1), key)
         # the transition zone joins SPH particles to MPM ones of the same material (seed
         # 000: one continuum, two discretisations); different materials meet through the
-        # SPH pair forces and their reactions instead (`fsi`)
-        for material in self.mpm_materials:
-            mark, shape = self._marks(material)
-            transition_keys(self.dim_tag, n, p["x"], p["method"], p["mat"], material,
+        # SPH pair forces and their reactions instead (`fsi`), and an SPH solid near an MPM
+        # fluid also through the grid contact of its own velocity field (sph_solid.py)
+        marks = {}
+        for material, select, value in self._joins:
+            if material not in marks:
+                marks[material] = self._marks(material)
+            mark, shape = marks[material]
+            transition_keys(self.dim_tag, n, p["x"], p["method"], p["mat"], select, value,
                             g.origin, g.inv_dx, g.strides, shape, mark, key)
         if not is_sorted(key, n):
             order = np.argsort(key, kind="stable")
@@ -198,9 +220,10 @@ class Coupling:
             self.reorders += 1
             if self.sph is not None:
                 self.sph.invalidate()
-        counts = np.bincount(key, minlength=3)
+        counts = np.cumsum(np.bincount(key, minlength=REST + 1))
         self.mpm.n_g2p = int(counts[0])
-        self.mpm.n_p2g = int(counts[0] + counts[1])
+        self.mpm.n_stress = int(counts[TRANSITION])
+        self.mpm.n_p2g = int(counts[CONTACT])
         # the reactions of the SPH pair forces on MPM points act as external forces in P2G
         m = self.mpm.n_g2p
         if self.loads:
@@ -208,6 +231,9 @@ class Coupling:
         else:
             p["fext"][:m] = p["fsi"][:m]
         p["fext"][m:n] = 0.0
+        lo, hi = self.mpm.n_stress, self.mpm.n_p2g
+        if hi > lo:
+            solid_force(p, lo, hi, self.gravity)
 
     def after_mpm(self):
         """MPM rows are SPH neighbours: give them the SPH density rho = m/V."""

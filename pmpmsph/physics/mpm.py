@@ -6,6 +6,9 @@ USF:                P2G(m, mv) -> grid v + BCs -> G2P(L, F, sigma) -> P2G(m, mv,
 MUSL (Sulsky):      P2G(m, mv, f) -> grid solve + BCs -> G2P(v, x) -> P2G(m, mv) with the
                     new particle velocities -> grid v + BCs -> G2P(L, F, sigma)
 Multi-field contact (Bardenhagen et al. 2001) runs after every grid solve when enabled.
+In a coupled scene the rows [n_stress, n_p2g) are SPH solid particles in their own velocity
+fields (`physics.sph_solid`): they scatter mass, momentum and their SPH force (no stress), and
+take back the velocity change the contact of the force solve made to their field.
 PIC-USL without damping scatters p + dt f in one go (`fold_force`, mpm88's form).
 """
 from contextlib import contextmanager
@@ -17,6 +20,7 @@ from ..kernels.coupling import grid_force_kick
 from ..kernels.mpm import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
 from ..kernels.partition import cell_keys
 from ..kernels.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
+from ..kernels.sph_solid import gather_increment
 from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
@@ -44,7 +48,7 @@ class MPMStage:
         self.halo_enabled = True
         self.timers = timers if timers is not None else Timers()
         self.set_decomposition(decomposition)
-        self.contact_gap = self._contact_gap() if self.multi else 0.0
+        self.contact_gap = spec.contact_gap * self._contact_gap() if self.multi else 0.0
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
         self.mtypes, self.mparams = materials
@@ -62,7 +66,7 @@ class MPMStage:
         # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone).
         # With the conservative coupling the rows [n_g2p, n_p2g) (transition SPH) scatter
         # mass and momentum but no stress, and take the grid force (`grid_force_kick`)
-        self.n_p2g = self.n_g2p = None
+        self.n_p2g = self.n_g2p = self.n_stress = None
         self.signal = None  # max (c + |v|) after the last step, from G2P (see `step`)
 
     @property
@@ -72,6 +76,16 @@ class MPMStage:
     @n_p2g.setter
     def n_p2g(self, value):
         self._n_p2g = value
+
+    @property
+    def n_stress(self):
+        """Rows [0, n_stress) scatter their stress; [n_stress, n_p2g) are SPH solids in
+        contact (physics.sph_solid)."""
+        return self.n_p2g if self._n_stress is None else self._n_stress
+
+    @n_stress.setter
+    def n_stress(self, value):
+        self._n_stress = value
 
     @property
     def n_g2p(self):
@@ -168,18 +182,28 @@ class MPMStage:
         n, lp, fext, pfield, _, _ = self._optional(self.n_p2g)
         t = self.timers
         fold = with_force and self.fold_force
-        # rows [ns, n): mass and momentum only (the conservative coupling's SPH rows)
-        ns = self.n_g2p if self.conservative else n
-        parts = ((0, ns, with_force), (ns, n, False)) if ns < n else ((0, n, with_force),)
+        ns = min(self.n_stress, n)
+        ng = min(self.n_g2p, ns)
+        F = self._domain_F(n)
+        # (rows, scatter their stress, scatter forces): MPM rows; transition SPH rows (no
+        # stress and no force with the conservative coupling, which gives them the grid
+        # force afterwards, `grid_force_kick`); SPH solids in contact (their stress is in
+        # their SPH force `fext`, physics/sph_solid.py)
+        if self.conservative:
+            parts = ((0, ng, True, with_force), (ng, ns, False, False), (ns, n, False, with_force))
+        else:
+            parts = ((0, ns, True, with_force), (ns, n, False, with_force))
         with t.phase("p2g"):
             self._span = g.work_range(p["x"], n, self._margin, *self._keep)
             g.reset(*self._span)
-            for a, b, force in parts:
-                Fd = self._domain_F(n)
-                p2g(*self.tags, p["x"][a:b], p["v"][a:b], p["mass"][a:b], p["vol"][a:b],
-                    p["sigma"][a:b], fext[a:b] if fext is not None else None,
-                    lp[a:b] if lp is not None else None, Fd[a:b] if Fd is not None else None,
-                    pfield[a:b] if pfield is not None else None, g.node0, g.offset,
+            for lo, hi, stress, force in parts:
+                if hi == lo and lo > 0:
+                    continue
+                sigma = p["sigma"][lo:hi] if stress else np.zeros((hi - lo, 3, 3))
+                p2g(*self.tags, p["x"][lo:hi], p["v"][lo:hi], p["mass"][lo:hi],
+                    p["vol"][lo:hi], sigma, None if fext is None else fext[lo:hi],
+                    None if lp is None else lp[lo:hi], None if F is None else F[lo:hi],
+                    None if pfield is None else pfield[lo:hi], g.node0, g.offset,
                     g.inv_dx, g.strides, g.mass, g.mom,
                     g.force if force and not fold else None,
                     g.mgrad if self.multi else None, g.mx if self.multi else None,
@@ -197,12 +221,25 @@ class MPMStage:
             mode = ((FOLDED if self.fold_force else WITH_FORCE) if with_force else MOMENTUM)
             grid_velocity(self.dim, g.mass, g.mom, g.force, g.vel, g.dv, dt, self.gravity,
                           self.damping, self.mass_cutoff, mode, *self._span)
+            # the SPH solids in contact take the contact's change of their fields, once a
+            # step (the solve with forces)
+            gather = with_force and self.multi and self.n_p2g > self.n_stress
+            if gather:
+                before = g.vel.copy()
             if self.multi:
                 multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv,
                                     self.friction, self.mass_cutoff, self.contact_gap)
+            if gather:
+                dvc = g.vel - before
             # node-local: ghost nodes, holding the full sums (`GridHalo.sum`), get the
-            # owners' velocities bit for bit
+            # owners' velocities (and contact changes) bit for bit
             self.bcs.apply(time, g.vel, g.dv)
+        if gather:
+            p = self.p
+            with self.timers.phase("g2p"):
+                gather_increment(*self.tags, self.n_stress, self.n_p2g, p["x"], p["v"],
+                                 p["lp"] if "lp" in p else None, p["body"], dvc, g.node0,
+                                 g.offset, g.inv_dx, g.strides)
         # (the ghosts hold the full nodal mass and force too, from `GridHalo.sum`)
         if with_force and self.conservative and self.n_p2g > self.n_g2p:
             self._grid_force_kick(dt)

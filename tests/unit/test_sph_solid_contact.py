@@ -1,0 +1,69 @@
+"""The grid contact of an SPH solid with an MPM fluid (physics/sph_solid.py): the velocity
+change the contact makes to the solid's field, gathered back to its particles
+(kernels/sph_solid.py's gather_increment), gives them exactly the momentum the fluid's field
+lost, and it stops their approach."""
+import numpy as np
+
+from pmpmsph.config.case import GridSpec
+from pmpmsph.kernels.contact import multi_field_contact, touching_separation
+from pmpmsph.kernels.mpm import WITH_FORCE, grid_velocity, p2g
+from pmpmsph.kernels.shapes import GIMP, static_tags, weights_1d
+from pmpmsph.kernels.sph_solid import gather_increment
+from pmpmsph.physics.grid import Grid
+
+
+def _scene(seed):
+    """Fluid points (field 0) below y = 0.5, solid particles (field 1) above, spacing 0.025
+    on cells of 0.1, jittered; the two bodies move towards each other."""
+    rng = np.random.default_rng(seed)
+    dp = 0.025
+    g = np.arange(dp / 2, 1.0, dp)
+    X, Y = np.meshgrid(g, g, indexing="ij")
+    x = np.stack([X.ravel(), Y.ravel()], axis=1)
+    x += rng.uniform(-0.05, 0.05, x.shape) * dp
+    solid = x[:, 1] > 0.5
+    order = np.argsort(solid, kind="stable")  # fluid rows first, as the coupling orders them
+    x, solid = x[order], solid[order]
+    n = len(x)
+    v = rng.normal(0.0, 0.05, (n, 2))
+    v[:, 1] += np.where(solid, -0.5, 0.5)
+    mass = np.where(solid, 917.0, 997.0) * dp * dp
+    field = solid.astype(np.int64)
+    lp = np.full((n, 2), 0.5 * dp / 0.1)
+    return x, v, mass, field, lp, solid
+
+
+def test_gathered_contact_momentum_balances_the_fluid_field():
+    x, v, mass, field, lp, solid = _scene(3)
+    n = len(x)
+    grid = Grid(GridSpec((0.0, 0.0), (0.1, 0.1), (10, 10)), nfields=2, with_normals=True)
+    tags = static_tags(2, GIMP)
+    grid.reset()
+    p2g(*tags, x, v, mass, np.full(n, 0.025**2), np.zeros((n, 3, 3)), None, lp, None, field,
+        grid.node0, grid.offset, grid.inv_dx, grid.strides, grid.mass, grid.mom, grid.force,
+        grid.mgrad, grid.mx, None)
+    grid_velocity(2, grid.mass, grid.mom, grid.force, grid.vel, grid.dv, 1e-4, np.zeros(3),
+                  0.0, 1e-12, WITH_FORCE)
+
+    def weight(r):
+        base, w, _ = weights_1d(GIMP, 10.0 + r, 0.25)
+        k = 10 - base
+        return w[k] if 0 <= k < 4 else 0.0
+
+    gap = touching_separation(weight, grid.dx, 1.25)
+    before = grid.vel.copy()
+    multi_field_contact(2, grid.mass, grid.mgrad, grid.mx, grid.vel, grid.dv, 0.0, 1e-12, gap)
+    dvc = grid.vel - before
+    assert np.abs(dvc[0]).max() > 0.1       # the contact acted on the approaching fields
+    fluid_change = np.einsum("i,ia->a", grid.mass[0], dvc[0])
+    s = np.nonzero(solid)[0]
+    v1 = v.copy()
+    gather_increment(*tags, s[0], n, x, v1, lp, field, dvc, grid.node0, grid.offset,
+                     grid.inv_dx, grid.strides)
+    assert np.all(v1[~solid] == v[~solid])   # the fluid rows are left to G2P
+    solid_change = (mass[solid, None] * (v1[solid] - v[solid])).sum(axis=0)
+    scale = np.abs(mass[:, None] * v).sum()
+    assert np.all(np.abs(solid_change + fluid_change) < 1e-12 * scale)
+    # the solid's particles near the interface stop approaching the fluid (downwards)
+    near = solid & (x[:, 1] < 0.6)
+    assert v[near, 1].mean() < -0.4 and v1[near, 1].mean() > 0.5 * v[near, 1].mean()
