@@ -43,7 +43,7 @@ def test_gathered_contact_momentum_balances_the_fluid_field():
         grid.node0, grid.offset, grid.inv_dx, grid.strides, grid.mass, grid.mom, grid.force,
         grid.mgrad, grid.mx, None)
     grid_velocity(2, grid.mass, grid.mom, grid.force, grid.vel, grid.dv, 1e-4, np.zeros(3),
-                  0.0, 1e-12, WITH_FORCE)
+                  0.0, 1e-12, WITH_FORCE, 0, grid.n_nodes)
 
     def weight(r):
         base, w, _ = weights_1d(GIMP, 10.0 + r, 0.25)
