@@ -28,6 +28,9 @@ from .grid import Grid
 from ..parallel.grid_halo import GridHalo
 from ..timing import Timers
 
+#: grids with fewer nodes reset and solve every node (`Grid.work_range` costs ~5 us a call)
+TRIM_MIN_NODES = 4096
+
 
 class MPMStage:
     def __init__(self, case, particles, materials, decomposition, timers=None):
@@ -116,6 +119,8 @@ class MPMStage:
                        shared if decomposition.right is not None else 0)
                       if decomposition.axis == 0 else (every, every))
         self._span = (0, self.grid.n_nodes)
+        # a small grid (a 1D bar, a few cells) is not worth the range's Python work per step
+        self._trim = self.grid.n_nodes >= TRIM_MIN_NODES
 
     @contextmanager
     def detached(self):
@@ -191,10 +196,13 @@ class MPMStage:
         # their SPH force `fext`, physics/sph_solid.py)
         if self.conservative:
             parts = ((0, ng, True, with_force), (ng, ns, False, False), (ns, n, False, with_force))
-        else:
+        elif ns < n:
             parts = ((0, ns, True, with_force), (ns, n, False, with_force))
+        else:  # every row scatters its stress (all but the coupled scenes above)
+            parts = ((0, n, True, with_force),)
         with t.phase("p2g"):
-            self._span = g.work_range(p["x"], n, self._margin, *self._keep)
+            if self._trim:
+                self._span = g.work_range(p["x"], n, self._margin, *self._keep)
             g.reset(*self._span)
             for lo, hi, stress, force in parts:
                 if hi == lo and lo > 0:

@@ -28,7 +28,7 @@ def test_range_covers_the_particles_and_hulls_the_last_one():
 
 
 def _dam(trim):
-    sc = Scene(2, grid=dict(origin=[0, 0], length=[8, 4], cells=[32, 16]),
+    sc = Scene(2, grid=dict(origin=[0, 0], length=[16, 4], cells=[128, 32]),
                time=dict(end=1.0, dt=1e-3), gravity=[0, -9.81],
                mpm=dict(shape="quadratic", transfer="musl"))
     sc.material("water", model="tait", rho=1000.0, kappa=2e5, gamma=7.0, mu=0.01)
