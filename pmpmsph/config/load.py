@@ -205,12 +205,16 @@ def _body_spacing(body, grid=None):
     return min((hi - lo) / c for lo, hi, c in zip(g.lo, g.hi, body.count))
 
 
-def _hourglass(t, formulation):
-    """[sph] hourglass: the factor kappa of the hourglass control (updated formulation)."""
+def _hourglass(t, formulation, integrator):
+    """[sph] hourglass: the factor kappa of the hourglass control (updated formulation, and
+    the Verlet integrator, whose drifts carry the control's displacements)."""
     kappa = t.number("hourglass", 0.0, min=0.0)
     if kappa > 0.0 and formulation != "updated":
         raise ConfigError(t.key("hourglass"), "the hourglass control is for the updated "
                           "formulation (kernels/sph_hourglass.py)")
+    if kappa > 0.0 and integrator != "verlet":
+        raise ConfigError(t.key("hourglass"), f"the hourglass control needs sph.integrator = "
+                          f"'verlet' (got '{integrator}')")
     return kappa
 
 
@@ -264,7 +268,7 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
         # the odd-even mode of the corrected solid (kernels/sph_hourglass.py), off by default
-        hourglass=_hourglass(t, formulation),
+        hourglass=_hourglass(t, formulation, integrator),
         damping=t.number("damping", 0.0, min=0.0),
         wall_no_slip=walls == "no_slip",
         pressure_min=t.number("pressure_min", float("-inf")),

@@ -39,6 +39,13 @@ of which the Bonet-Lok gradient is the weighted least-squares fit (M_a of
 the corrected displacement gradient. A first version took the particle's integrated F for
 Fh_a: not exactly conservative, it grew an instability at the corners of the pure SPH plate
 of scene 11 (CFL 0.3 and 0.2); with the fit it is stable there.
+Written in displacements u = x - X (the field `u`, integrated as u += dt v beside x):
+x_ba - Fh_a X_ba = u_ba - (Fh_a - 1) X_ba, with Fh_a - 1 fitted from the u_ba. The two are
+equal, but e_ab is a small residual of O(spacing) vectors, and positions carry an absolute
+rounding of ulp(|x|) ~ 2e-16 per drift, which the residual amplifies: with positions the
+one-rank and two-rank runs of the plate (whose sums run in different orders) drifted apart
+by 9e-9 relative in 150 steps, with displacements they agree like the rest of the coupling
+(tests/parallel/test_coupled_mpi.py).
 The pairs are those of the current neighbour lists (support plus skin): the control is
 meant for solids that stay near their reference configuration (small strain, any rotation).
 The hourglass stiffness adds to the wave speed, and the time step is not reduced for it:
@@ -69,13 +76,14 @@ def _pair(dim, kern, h, X0, a, b):
 
 
 @njit
-def hourglass_fit(dim_tag, kern_tag, h, n_query, x, X0, mass, rho, method, mat, fluid,
+def hourglass_fit(dim_tag, kern_tag, h, n_query, u, X0, mass, rho, method, mat, fluid,
                   start, index, A, Fh):
-    """Fh_a = C_a A_a^-1 for the owned SPH rows [0, n_query) of a solid: the weighted
-    least-squares fit of x_b - x_a = Fh_a (X_b - X_a) over the SPH neighbours b of a's
-    material, weights V_b phi(|X_ba|) (module docstring), with C_a = sum_b w x_ba (x) X_ba
-    and A_a = sum_b w X_ba (x) X_ba (scratch, >= n_query rows). Over half neighbour lists.
-    A row whose A is (nearly) singular gets Fh = 0 (its pair terms are then skipped)."""
+    """Fh_a = 1 + C_a A_a^-1 for the owned SPH rows [0, n_query) of a solid: the weighted
+    least-squares fit of u_b - u_a = (Fh_a - 1) (X_b - X_a) over the SPH neighbours b of a's
+    material (u: displacements, module docstring), weights V_b phi(|X_ba|), with
+    C_a = sum_b w u_ba (x) X_ba and A_a = sum_b w X_ba (x) X_ba (scratch, >= n_query rows).
+    Over half neighbour lists. A row whose A is (nearly) singular gets Fh = 0 (its pair
+    terms are then skipped)."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     for a in range(n_query):
@@ -96,7 +104,7 @@ def hourglass_fit(dim_tag, kern_tag, h, n_query, x, X0, mass, rho, method, mat, 
             wa = mass[b] / rho[b] * phi
             wb = mass[a] / rho[a] * phi if b < n_query else 0.0
             for i in range(dim):
-                xi = x[b, i] - x[a, i]
+                xi = u[b, i] - u[a, i]
                 Xi = X0[b, i] - X0[a, i]
                 for j in range(dim):
                     Xj = X0[b, j] - X0[a, j]
@@ -122,6 +130,8 @@ def hourglass_fit(dim_tag, kern_tag, h, n_query, x, X0, mass, rho, method, mat, 
                 if ok:
                     for k in range(dim):
                         s += C[i, k] * Ai[k, j]
+                    if i == j:
+                        s += 1.0
                 Fh[a, i, j] = s
 
 
@@ -155,7 +165,7 @@ def _invert(dim, M, Mi):
 
 
 @njit
-def hourglass_forces(dim_tag, kern_tag, h, n_query, x, X0, Fh, mass, rho, cs, method, mat,
+def hourglass_forces(dim_tag, kern_tag, h, n_query, u, X0, Fh, mass, rho, cs, method, mat,
                      fluid, start, index, kappa, acc):
     """Adds the hourglass control (module docstring) to acc of the owned SPH rows
     [0, n_query), over half neighbour lists (each pair once, both ends; a halo row b takes
@@ -179,15 +189,16 @@ def hourglass_forces(dim_tag, kern_tag, h, n_query, x, X0, Fh, mass, rho, cs, me
             Mb = rho[b] * cs[b] * cs[b]
             c = kappa * Va * Vb * phi
             for i in range(dim):
-                pa = 0.0  # (Fh_a X_ba)_i
-                pb = 0.0  # (Fh_b X_ba)_i
+                pa = 0.0  # ((Fh_a - 1) X_ba)_i
+                pb = 0.0  # ((Fh_b - 1) X_ba)_i
                 for j in range(dim):
                     dX = X0[b, j] - X0[a, j]
-                    pa += Fh[a, i, j] * dX
-                    pb += Fh[b, i, j] * dX
-                xba = x[b, i] - x[a, i]
-                # e_ab = x_ba - Fh_a X_ba, e_ba = -x_ba + Fh_b X_ba
-                f = c * (Ma * (xba - pa) - Mb * (pb - xba))
+                    one = 1.0 if i == j else 0.0
+                    pa += (Fh[a, i, j] - one) * dX
+                    pb += (Fh[b, i, j] - one) * dX
+                uba = u[b, i] - u[a, i]
+                # e_ab = u_ba - (Fh_a - 1) X_ba, e_ba = -u_ba + (Fh_b - 1) X_ba
+                f = c * (Ma * (uba - pa) - Mb * (pb - uba))
                 acc[a, i] += f / mass[a]
                 if b < n_query:
                     acc[b, i] -= f / mass[b]

@@ -275,6 +275,8 @@ class Coupling:
             to_sph = change[want[change] == SPH]
             # an MPM particle entering SPH starts from its MPM density; F and sigma carry on
             p["rho"][to_sph] = p["mass"][to_sph] / p["vol"][to_sph]
+            if "u" in p:  # the hourglass control's displacement, which MPM does not carry
+                p["u"][to_sph] = p["x"][to_sph] - p["X0"][to_sph]
             meth[change] = want[change]
             self.handed_over += len(change)
             if self.sph is not None:

@@ -87,7 +87,10 @@ class PrescribedVelocity:
                 if val is not None:
                     v[:n, a][sel] = val
                     if x_before is not None:
-                        x[:n, a][sel] = x_before[j][:, a] + dt * val
+                        moved = x_before[j][:, a] + dt * val
+                        if "u" in p:  # the displacement of the hourglass control follows
+                            p["u"][:n, a][sel] += moved - x[:n, a][sel]
+                        x[:n, a][sel] = moved
 
     def positions(self):
         """Positions of each constraint's particles at the start of a step (for `apply`);

@@ -125,6 +125,7 @@ class SPHStage:
             out.append(FieldSpec("B", (3, 3), migrate=False, fill="identity"))
         if case.sph.hourglass > 0.0:   # reference positions (set at seeding, build.py)
             out += [FieldSpec("X0", ("dim",), halo=True, output=True),
+                    FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
                     FieldSpec("Fh", (3, 3), migrate=False, halo=True)]
         if multi:
             out += [FieldSpec("x_n", ("dim",), migrate=False),
@@ -204,7 +205,7 @@ class SPHStage:
         if len(self._A) < n:
             self._A = np.zeros((max(n, 2 * len(self._A)), 3, 3))
         with self.timers.phase("sph"):
-            hourglass_fit(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+            hourglass_fit(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                           p.with_halo("X0"), p.with_halo("mass"), p.with_halo("rho"),
                           p.with_halo("method"), p.with_halo("mat"), self.fluid, self.start,
                           self.index, self._A, p.with_halo("Fh"))
@@ -283,7 +284,7 @@ class SPHStage:
                       "fsi" in p, self.corr_tag, self._B(), self.fluid,
                       p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)))
             if self.hourglass > 0.0:
-                hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, x,
+                hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                                  p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),
                                  rho, p.with_halo("cs"), p.with_halo("method"),
                                  p.with_halo("mat"), self.fluid, self.start, self.index,
@@ -379,6 +380,14 @@ class SPHStage:
                     p["F_n"], c1, dtc, p["x"], p["v"], p["rho"], p["F"], p["acc"],
                     p["drho"], p["L"], save, self.want_L)
 
+    def _drift(self, n, dt):
+        """x += dt v over the owned SPH rows, and the hourglass control's displacement
+        u += dt v with them (kernels/sph_hourglass.py: u keeps its own rounding)."""
+        p = self.p
+        add_scaled(self.dim_tag, n, p["method"], dt, p["x"], p["v"])
+        if self.hourglass > 0.0:
+            add_scaled(self.dim_tag, n, p["method"], dt, p["u"], p["v"])
+
     def kick(self, dt):
         """The first half kick of a Verlet step alone (v += dt/2 acc, with the first rates
         if none yet): the conservative coupling gives it before the MPM step, whose P2G
@@ -403,11 +412,11 @@ class SPHStage:
             with self.timers.phase("integrate"):
                 if not kicked:
                     add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
-                add_scaled(tag, n, meth, 0.5 * dt, p["x"], p["v"])  # drift
+                self._drift(n, 0.5 * dt)
             self.kinematics()
             with self.timers.phase("integrate"):
                 cayley_update(tag, n, meth, dt, p["rho"], p["F"], p["drho"], p["L"])
-                add_scaled(tag, n, meth, 0.5 * dt, p["x"], p["v"])  # drift
+                self._drift(n, 0.5 * dt)
             bad = self.stress(dt, m0)
             self.evaluate()
             with self.timers.phase("integrate"):

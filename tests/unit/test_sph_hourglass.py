@@ -29,10 +29,11 @@ def _evaluate(X, x, kappa=2.0):
     mat = np.zeros(n, np.int32)
     fluid = np.zeros(1, np.bool_)
     Fh = np.zeros((n, 3, 3))
-    hourglass_fit((0, 0), (0,), H, n, x, X, mass, rho, method, mat, fluid, start, index,
+    u = np.ascontiguousarray(x - X)  # the kernels work on displacements
+    hourglass_fit((0, 0), (0,), H, n, u, X, mass, rho, method, mat, fluid, start, index,
                   np.zeros((n, 3, 3)), Fh)
     acc = np.zeros((n, 2))
-    hourglass_forces((0, 0), (0,), H, n, x, X, Fh, mass, rho, np.full(n, C), method, mat,
+    hourglass_forces((0, 0), (0,), H, n, u, X, Fh, mass, rho, np.full(n, C), method, mat,
                      fluid, start, index, kappa, acc)
     return Fh, acc, mass
 
@@ -119,6 +120,7 @@ max = [2.0, 2.0]
 [sph]
 correction = true
 hourglass = 2.0
+integrator = "verlet"
 [materials.steel]
 model = "linear_elastic"
 E = 1.0e6
@@ -139,10 +141,12 @@ cfl = 0.3
 
 
 @pytest.mark.parametrize("old,new", [("hourglass = 2.0", "hourglass = -1.0"),
-                                     ("[sph]", '[sph]\nformulation = "total"')])
+                                     ("[sph]", '[sph]\nformulation = "total"'),
+                                     ('integrator = "verlet"', 'integrator = "rk3"')])
 def test_the_option_and_its_bad_values(old, new):
     """`[sph] hourglass` (default 0: off) takes kappa >= 0, in the updated formulation only
-    (the total one has no such control)."""
+    (the total one has no such control) and with the Verlet integrator (whose drifts carry
+    the control's displacements)."""
     from pmpmsph import ConfigError, load_case_text
 
     assert load_case_text(CASE).sph.hourglass == 2.0
