@@ -98,3 +98,23 @@ def test_float_equals_one_rank():
     sim.run(max_steps=200)
     ref.run(max_steps=200)
     _compare(dist, sim, ref)
+
+
+def test_sph_block_in_mpm_water_equals_one_rank():
+    """The float the other way round (cases/coupled_sph_solid_float.toml) at spacing 0.01,
+    200 steps: an SPH ice block in MPM water, hydrostatic MPM start, the block's particles
+    in their own grid velocity field in contact with the water's (physics/sph_solid.py),
+    the contact's change gathered back onto the block, the slab faces cutting both."""
+    from pathlib import Path
+
+    from pmpmsph import load_case_file
+    from pmpmsph.simulation import Simulation
+
+    path = Path(__file__).resolve().parents[2] / "cases" / "coupled_sph_solid_float.toml"
+    sets = [(f"bodies[{i}].spacing", 0.01) for i in range(2)]
+    dist = world()
+    sim = Simulation(load_case_file(path, overrides=sets), dist=dist)
+    ref = Simulation(load_case_file(path, overrides=sets), dist=serial())
+    sim.run(max_steps=200)
+    ref.run(max_steps=200)
+    _compare(dist, sim, ref)
