@@ -25,6 +25,7 @@ from .parallel.migration import MigrationSchedule, migrate, migrate_all
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
 from .timing import Timers
+from .warmup import compile_kernels
 
 log = logging.getLogger("pmpmsph")
 
@@ -80,7 +81,7 @@ class Simulation(Restart):
         # from the case's bodies (not this rank's particles, which migrate), as in MPMStage
         used = sorted({list(case.materials).index(b.material) for b in case.bodies})
         self._mtag = material_tag(self.materials[0][used])
-        self._compile_kernels()
+        compile_kernels(self)
         if self.balancer is not None:  # seeding used equal slabs: balance before step 1
             with self.timers.phase("balance"):
                 self.rebalance()
@@ -120,58 +121,6 @@ class Simulation(Restart):
             return None
         return Decomposition(self.dist, spec, axis=case.parallel.axis,
                              key="grid.cells" if case.grid else "domain")
-
-    # -- JIT ----------------------------------------------------------------------------------
-    def _compile_kernels(self):
-        """Compile (or load from the cache) every kernel this scene uses, before step 1.
-
-        Rank 0 goes first and fills the shared on-disk cache; the other ranks then load from
-        it, so N ranks never compile the same kernel N times nor race on the cache files.
-        The kernels run on zero particles with the halo exchanges off, which compiles exactly
-        the signatures the real steps use. Reported apart as the JIT warm-up.
-        """
-        t0 = time.perf_counter()
-        before = dict(self.timers.total)
-        for turn in (0, 1):
-            if (self.dist.rank == 0) == (turn == 0):
-                self._dry_step()
-            self.dist.barrier()
-        self.timers.total.clear()
-        self.timers.total.update(before)  # the dry step's phases are not run time
-        self.timers.add("jit_warmup", time.perf_counter() - t0)
-
-    def _dry_step(self):
-        from .kernels.partition import cell_keys, slab_leavers
-
-        p = self.particles
-        n_owned, n_total = p.n_owned, p.n_total
-        p.n_owned = p.n_total = 0
-        try:
-            if self.mpm is not None:
-                with self.mpm.detached():
-                    self.mpm.step(1e-30, 0.0)
-                    if self.mpm.conservative:  # (its rows are empty in the dry step)
-                        self.mpm._grid_force_kick(1e-30)
-                g = self.mpm.grid
-                cell_keys(p["x"], g.origin, g.inv_dx, g.strides)
-            if self.sph is not None:
-                self.sph.warm_up()
-            if self.coupling is not None:
-                with self.mpm.detached():
-                    self.coupling.prepare()
-                self.mpm.n_p2g = self.mpm.n_g2p = self.mpm.n_stress = None
-            mtypes, mparams = self.materials
-            mstate = p["mstate"] if "mstate" in p else np.zeros((0, 0))
-            particle_sums(self.dim, p["x"], p["v"], p["mass"], p["vol0"], p.deformation(),
-                          p["mat"], mtypes, mparams, mstate, self.gravity, self._sums,
-                          self._mtag)
-            max_signal_speed(self.dim, p["v"], p.deformation(), p["mat"], mtypes, mparams)
-            if self.decomposition is not None:
-                dec = self.decomposition
-                slab_leavers(p["x"], dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells,
-                             dec.lo_cell, dec.hi_cell)
-        finally:
-            p.n_owned, p.n_total = n_owned, n_total
 
     # -- time step --------------------------------------------------------------------------
     def signal_speed(self):

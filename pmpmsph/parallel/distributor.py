@@ -135,7 +135,7 @@ def configure_numba_cache():
 
     Per source version, so that an edited callee never leaves a stale compiled caller behind
     (Numba only watches a kernel's own file). All ranks share it: `Simulation` compiles on
-    rank 0 first and the other ranks then only read (see `Simulation._compile_kernels`).
+    rank 0 first and the other ranks then only read (see `warmup.compile_kernels`).
     Must run before numba compiles anything. An explicit NUMBA_CACHE_DIR is the base.
     """
     if os.environ.get("PMPMSPH_CACHE_SET"):
