@@ -20,17 +20,26 @@ def _compare(dist, sim, ref):
         assert rel_diff(mine[name], p[name][order]) < 1e-10, name
 
 
-def _wave(sim):
+def _wave(sim, k=1):
     x = sim.particles["x"][:, 0]
-    sim.particles["v"][:, 0] = 0.01 * np.sqrt(128e9 / 8790.0) * np.sin(np.pi * x)
+    sim.particles["v"][:, 0] = 0.01 * np.sqrt(128e9 / 8790.0) * np.sin(k * np.pi * x)
 
 
-def test_coupled_bar_equals_one_rank():
+@pytest.mark.parametrize("interface,k", [("seed", 1), ("conservative", 10)])
+def test_coupled_bar_equals_one_rank(interface, k):
+    """Scene 8's bar with the seed's interface (k = 1) and the conservative one (k = 10:
+    its grid force on the transition SPH rows and pair reactions on the MPM points)."""
     dist = world()
-    sim = coupled_bar_1d().simulation(dist=dist)
-    ref = coupled_bar_1d().simulation(dist=serial())
-    _wave(sim)
-    _wave(ref)
+
+    def scene():
+        sc = coupled_bar_1d()
+        sc.data["coupling"] = dict(interface=interface)
+        return sc
+
+    sim = scene().simulation(dist=dist)
+    ref = scene().simulation(dist=serial())
+    _wave(sim, k)
+    _wave(ref, k)
     sim.run(max_steps=300)
     ref.run(max_steps=300)
     _compare(dist, sim, ref)
