@@ -9,11 +9,9 @@ each pair once) from `kernels.neighbours`. The integrators are in `kernels.sph_i
   Monaghan artificial viscosity (eqs. 2.7-2.8), Monaghan's artificial stress against the
   tensile instability (Gray, Monaghan & Swift 2001), and the velocity gradient whose
   symmetric part is the strain rate of eq. 2.9 (difference form of eq. 2.4).
-* `wall_state`: dummy-particle walls (Adami, Hu & Adams 2012, eq. 27): pressure extrapolated
-  from the fluid with the hydrostatic correction, density from the inverse Tait law, and the
-  ghost velocity used in the viscous stress (no-slip: -v~, free slip: +v~).
+* `wall_state` (kernels/sph_walls.py): dummy-particle walls (Adami, Hu & Adams 2012).
 * `sph_stress`: stress of owned SPH particles from their F (solids) or density (fluids).
-* `sound_speeds`, `pair_stress`, `artificial_stress` (with the 3x3 Jacobi `sym_eig3`):
+* `sound_speeds`, `pair_stress` and (kernels/sph_artificial_stress.py) `artificial_stress`:
   per-row inputs of the pair loop.
 """
 import numpy as np
@@ -44,88 +42,6 @@ def sound_speeds(dim, n, method, mat, rho, F, mtypes, mparams, cs):
         else:
             J = det3(F[a])
         cs[a] = wave_speed(mtypes[mi], mparams[mi], J) if J > 0 else 0.0
-
-
-@njit
-def sym_eig3(A):
-    """Eigenvalues w and eigenvectors (columns of V) of a symmetric 3x3 matrix by cyclic
-    Jacobi rotations (no LAPACK needed; converges to round-off in a few sweeps)."""
-    M = np.empty((3, 3))
-    V = np.eye(3)
-    for i in range(3):
-        for j in range(3):
-            M[i, j] = 0.5 * (A[i, j] + A[j, i])
-    for sweep in range(30):
-        off = M[0, 1] ** 2 + M[0, 2] ** 2 + M[1, 2] ** 2
-        scale = M[0, 0] ** 2 + M[1, 1] ** 2 + M[2, 2] ** 2
-        if off <= 1e-30 * scale or off == 0.0:
-            break
-        for p in range(2):
-            for q in range(p + 1, 3):
-                if M[p, q] == 0.0:
-                    continue
-                theta = 0.5 * np.arctan2(2.0 * M[p, q], M[q, q] - M[p, p])
-                c = np.cos(theta)
-                s = np.sin(theta)
-                for k in range(3):  # M <- M J
-                    mkp = M[k, p]
-                    mkq = M[k, q]
-                    M[k, p] = c * mkp - s * mkq
-                    M[k, q] = s * mkp + c * mkq
-                for k in range(3):  # M <- J^T M
-                    mpk = M[p, k]
-                    mqk = M[q, k]
-                    M[p, k] = c * mpk - s * mqk
-                    M[q, k] = s * mpk + c * mqk
-                for k in range(3):
-                    vkp = V[k, p]
-                    vkq = V[k, q]
-                    V[k, p] = c * vkp - s * vkq
-                    V[k, q] = s * vkp + c * vkq
-    w = np.empty(3)
-    for i in range(3):
-        w[i] = M[i, i]
-    return w, V
-
-
-@njit
-def artificial_stress(dim, n, sigma, rho, eps, R):
-    """R_a = -eps sigma'_ii / rho^2 on the tensile principal stresses, rotated back
-    (Gray, Monaghan & Swift 2001, eqs. 23-25); zero for compressive ones. R is stored as
-    the symmetric 6-vector (xx, yy, zz, xy, yz, xz)."""
-    for a in range(n):
-        for i in range(6):
-            R[a, i] = 0.0
-        s = -eps / (rho[a] * rho[a])
-        if dim == 1:
-            if sigma[a, 0, 0] > 0.0:
-                R[a, 0] = s * sigma[a, 0, 0]
-            continue
-        if dim == 2:
-            sxx = sigma[a, 0, 0]
-            syy = sigma[a, 1, 1]
-            sxy = sigma[a, 0, 1]
-            theta = 0.5 * np.arctan2(2.0 * sxy, sxx - syy)
-            c = np.cos(theta)
-            sn = np.sin(theta)
-            s1 = c * c * sxx + 2.0 * c * sn * sxy + sn * sn * syy
-            s2 = sn * sn * sxx - 2.0 * c * sn * sxy + c * c * syy
-            r1 = s * s1 if s1 > 0.0 else 0.0
-            r2 = s * s2 if s2 > 0.0 else 0.0
-            R[a, 0] = c * c * r1 + sn * sn * r2
-            R[a, 1] = sn * sn * r1 + c * c * r2
-            R[a, 3] = c * sn * (r1 - r2)
-            continue
-        w, V = sym_eig3(sigma[a])
-        for k in range(3):
-            if w[k] > 0.0:
-                rk = s * w[k]
-                R[a, 0] += rk * V[0, k] * V[0, k]
-                R[a, 1] += rk * V[1, k] * V[1, k]
-                R[a, 2] += rk * V[2, k] * V[2, k]
-                R[a, 3] += rk * V[0, k] * V[1, k]
-                R[a, 4] += rk * V[1, k] * V[2, k]
-                R[a, 5] += rk * V[0, k] * V[2, k]
 
 
 @njit
@@ -207,59 +123,6 @@ def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
             for j in range(3):
                 La[i, j] = L[a, i, j]
         compute_stress(mtypes[mi], F[a], La, dt, mstate[a], mparams[mi], sigma[a])
-
-
-@njit
-def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, index,
-               mtypes, mparams, gravity, no_slip, vg):
-    """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
-    p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
-    rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I; the ghost
-    velocity vg_w = -v~ (no-slip) or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf.
-    Over half neighbour lists (each pair once), the sums gathered for the wall end of every
-    wall-fluid pair; a halo wall is left to its owner (then refreshed in the halo)."""
-    sw = np.zeros(n_query)
-    ps = np.zeros(n_query)
-    vt = np.zeros((n_query, 3))
-    for a in range(n_query):
-        wa = method[a] == WALL
-        for k in range(start[a], start[a + 1]):
-            b = index[k]
-            wb = method[b] == WALL
-            if wa == wb:
-                continue
-            if wb and b >= n_query:
-                continue  # a halo wall: its owner sums it
-            w, f = (a, b) if wa else (b, a)
-            r2 = 0.0
-            gr = 0.0
-            for d in range(dim):
-                dx = x[w, d] - x[f, d]
-                r2 += dx * dx
-                gr += gravity[d] * dx
-            W = kernel_w(kern, dim, np.sqrt(r2), h)
-            if W == 0.0:
-                continue
-            pf = -(sigma[f, 0, 0] + sigma[f, 1, 1] + sigma[f, 2, 2]) / 3.0
-            ps[w] += (pf + rho[f] * gr) * W
-            sw[w] += W
-            for d in range(dim):
-                vt[w, d] += v[f, d] * W
-    sgn = -1.0 if no_slip else 1.0
-    for w in range(n_query):
-        if method[w] != WALL:
-            continue
-        mi = mat[w]
-        p = ps[w] / sw[w] if sw[w] > 0.0 else 0.0
-        ratio = p / mparams[mi, 0] + 1.0
-        if ratio < 1e-3:
-            ratio = 1e-3
-        rho[w] = mparams[mi, 2] * ratio ** (1.0 / mparams[mi, 1])
-        for i in range(3):
-            for j in range(3):
-                sigma[w, i, j] = -p if i == j else 0.0
-        for d in range(dim):
-            vg[w, d] = sgn * vt[w, d] / sw[w] if sw[w] > 0.0 else 0.0
 
 
 @njit

@@ -24,14 +24,13 @@ import numpy as np
 
 from ..kernels.neighbours import moved_beyond, neighbour_lists
 from ..kernels.sph import (
-    artificial_stress,
     pair_stress,
     sound_speeds,
     sph_rates,
     sph_stress,
     sync_ghost_velocity,
-    wall_state,
 )
+from ..kernels.sph_artificial_stress import artificial_stress
 from ..kernels.sph_correction import correction_matrices
 from ..kernels.sph_hourglass import hourglass_fit, hourglass_forces
 from ..kernels.sph_integrate import (
@@ -42,6 +41,7 @@ from ..kernels.sph_integrate import (
     max_signal,
 )
 from ..kernels.sph_kernels import SUPPORT, kernel_w
+from ..kernels.sph_walls import wall_state
 from ..particles import FieldSpec
 from ..timing import Timers
 

@@ -1,0 +1,62 @@
+"""Dummy-particle walls of SPH fluids (Adami, Hu & Adams 2012, eq. 27): the wall particles'
+pressure extrapolated from the fluid with the hydrostatic correction, their density from the
+inverse Tait law, and the ghost velocity used in the viscous stress (no-slip: -v~, free
+slip: +v~). Part of the SPH kernels (`kernels.sph`)."""
+import numpy as np
+
+from ..jit import njit
+from .sph import WALL
+from .sph_kernels import kernel_w
+
+
+@njit
+def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, index,
+               mtypes, mparams, gravity, no_slip, vg):
+    """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
+    p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
+    rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I; the ghost
+    velocity vg_w = -v~ (no-slip) or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf.
+    Over half neighbour lists (each pair once), the sums gathered for the wall end of every
+    wall-fluid pair; a halo wall is left to its owner (then refreshed in the halo)."""
+    sw = np.zeros(n_query)
+    ps = np.zeros(n_query)
+    vt = np.zeros((n_query, 3))
+    for a in range(n_query):
+        wa = method[a] == WALL
+        for k in range(start[a], start[a + 1]):
+            b = index[k]
+            wb = method[b] == WALL
+            if wa == wb:
+                continue
+            if wb and b >= n_query:
+                continue  # a halo wall: its owner sums it
+            w, f = (a, b) if wa else (b, a)
+            r2 = 0.0
+            gr = 0.0
+            for d in range(dim):
+                dx = x[w, d] - x[f, d]
+                r2 += dx * dx
+                gr += gravity[d] * dx
+            W = kernel_w(kern, dim, np.sqrt(r2), h)
+            if W == 0.0:
+                continue
+            pf = -(sigma[f, 0, 0] + sigma[f, 1, 1] + sigma[f, 2, 2]) / 3.0
+            ps[w] += (pf + rho[f] * gr) * W
+            sw[w] += W
+            for d in range(dim):
+                vt[w, d] += v[f, d] * W
+    sgn = -1.0 if no_slip else 1.0
+    for w in range(n_query):
+        if method[w] != WALL:
+            continue
+        mi = mat[w]
+        p = ps[w] / sw[w] if sw[w] > 0.0 else 0.0
+        ratio = p / mparams[mi, 0] + 1.0
+        if ratio < 1e-3:
+            ratio = 1e-3
+        rho[w] = mparams[mi, 2] * ratio ** (1.0 / mparams[mi, 1])
+        for i in range(3):
+            for j in range(3):
+                sigma[w, i, j] = -p if i == j else 0.0
+        for d in range(dim):
+            vg[w, d] = sgn * vt[w, d] / sw[w] if sw[w] > 0.0 else 0.0
