@@ -57,7 +57,7 @@ kappa = 1, 2, 4 stable, kappa = 10 not.
 import numpy as np
 
 from ..jit import njit
-from ..materials.tensor import cofactor3
+from ..materials.tensor import block_inverse
 from .sph import SPH
 from .sph_kernels import kernel_dwdr
 
@@ -119,7 +119,7 @@ def hourglass_fit(dim_tag, kern_tag, h, n_query, u, X0, mass, rho, method, mat, 
     for a in range(n_query):
         if method[a] != SPH or fluid[mat[a]]:
             continue
-        d = _invert(dim, A[a], Ai)
+        d = block_inverse(A[a], dim, Ai)
         for i in range(dim):
             for j in range(dim):
                 C[i, j] = Fh[a, i, j]
@@ -138,30 +138,6 @@ def hourglass_fit(dim_tag, kern_tag, h, n_query, u, X0, mass, rho, method, mat, 
 #: a row whose (dimensionless, = 1 in a full lattice) moment matrix A has det below this
 #: takes no hourglass control (a particle with collinear or almost no SPH neighbours)
 HOURGLASS_MIN_DET = 1e-2
-
-
-@njit(inline="always")
-def _invert(dim, M, Mi):
-    """Inverse of the leading dim x dim block of M into Mi; returns det."""
-    if dim == 1:
-        d = M[0, 0]
-        if d != 0.0:
-            Mi[0, 0] = 1.0 / d
-        return d
-    if dim == 2:
-        d = M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
-        if d != 0.0:
-            Mi[0, 0] = M[1, 1] / d
-            Mi[1, 1] = M[0, 0] / d
-            Mi[0, 1] = -M[0, 1] / d
-            Mi[1, 0] = -M[1, 0] / d
-        return d
-    cof = cofactor3(M)
-    d = M[0, 0] * cof[0] + M[0, 1] * cof[1] + M[0, 2] * cof[2]
-    if d != 0.0:
-        for k in range(9):   # (M^-1)_ij = cof_ji / det
-            Mi[k % 3, k // 3] = cof[k] / d
-    return d
 
 
 @njit

@@ -81,7 +81,7 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.dispatch import compute_stress, strain_energy
-from ..materials.tensor import cofactor3, det3
+from ..materials.tensor import block_inverse, cofactor3, det3
 from .sph_kernels import kernel_dwdr, kernel_w
 
 __all__ = ["kernel_correction", "corrected_kernel_values", "fd_kernel_gradient",
@@ -90,38 +90,6 @@ __all__ = ["kernel_correction", "corrected_kernel_values", "fd_kernel_gradient",
 
 #: M (eq. 2) is treated as singular when det(M) < DEGENERATE * (tr M / dim)^dim
 DEGENERATE = 1e-10
-
-
-@njit(inline="always")
-def _inverse(M, dim, Minv):
-    """Inverse of the leading dim x dim block of M into Minv; returns det."""
-    if dim == 1:
-        d = M[0, 0]
-        if d != 0.0:
-            Minv[0, 0] = 1.0 / d
-        return d
-    if dim == 2:
-        d = M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
-        if d != 0.0:
-            s = 1.0 / d
-            Minv[0, 0] = M[1, 1] * s
-            Minv[1, 1] = M[0, 0] * s
-            Minv[0, 1] = -M[0, 1] * s
-            Minv[1, 0] = -M[1, 0] * s
-        return d
-    d = det3(M)
-    if d != 0.0:
-        s = 1.0 / d
-        Minv[0, 0] = (M[1, 1] * M[2, 2] - M[1, 2] * M[2, 1]) * s
-        Minv[0, 1] = (M[0, 2] * M[2, 1] - M[0, 1] * M[2, 2]) * s
-        Minv[0, 2] = (M[0, 1] * M[1, 2] - M[0, 2] * M[1, 1]) * s
-        Minv[1, 0] = (M[1, 2] * M[2, 0] - M[1, 0] * M[2, 2]) * s
-        Minv[1, 1] = (M[0, 0] * M[2, 2] - M[0, 2] * M[2, 0]) * s
-        Minv[1, 2] = (M[0, 2] * M[1, 0] - M[0, 0] * M[1, 2]) * s
-        Minv[2, 0] = (M[1, 0] * M[2, 1] - M[1, 1] * M[2, 0]) * s
-        Minv[2, 1] = (M[0, 1] * M[2, 0] - M[0, 0] * M[2, 1]) * s
-        Minv[2, 2] = (M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]) * s
-    return d
 
 
 @njit(inline="always")
@@ -215,7 +183,7 @@ def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
         tr = 0.0
         for i in range(dim):
             tr += M[i, i] / dim
-        det = _inverse(M, dim, Minv)
+        det = block_inverse(M, dim, Minv)
         if not (det > DEGENERATE * tr ** dim) or not (m0 > 0.0):
             n_bad += 1
             inv0 = 1.0 / m0
@@ -294,7 +262,7 @@ def corrected_kernel_values(xe, x, vol, h, kind, dim, corrected, out):
                     M[i, j] += w * r[i] * r[j]
     if not corrected:
         return
-    _inverse(M, dim, Minv)
+    block_inverse(M, dim, Minv)
     beta = np.zeros(3)
     A = m0
     for i in range(dim):

@@ -36,6 +36,39 @@ def cofactor3(f):
             f[0, 0] * f[1, 1] - f[0, 1] * f[1, 0])
 
 
+@njit(inline="always")
+def block_inverse(M, dim, Minv):
+    """Inverse of the leading dim x dim block of M into Minv (left untouched when the
+    determinant is 0); returns the determinant."""
+    if dim == 1:
+        d = M[0, 0]
+        if d != 0.0:
+            Minv[0, 0] = 1.0 / d
+        return d
+    if dim == 2:
+        d = M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
+        if d != 0.0:
+            s = 1.0 / d
+            Minv[0, 0] = M[1, 1] * s
+            Minv[1, 1] = M[0, 0] * s
+            Minv[0, 1] = -M[0, 1] * s
+            Minv[1, 0] = -M[1, 0] * s
+        return d
+    d = det3(M)
+    if d != 0.0:
+        s = 1.0 / d
+        Minv[0, 0] = (M[1, 1] * M[2, 2] - M[1, 2] * M[2, 1]) * s
+        Minv[0, 1] = (M[0, 2] * M[2, 1] - M[0, 1] * M[2, 2]) * s
+        Minv[0, 2] = (M[0, 1] * M[1, 2] - M[0, 2] * M[1, 1]) * s
+        Minv[1, 0] = (M[1, 2] * M[2, 0] - M[1, 0] * M[2, 2]) * s
+        Minv[1, 1] = (M[0, 0] * M[2, 2] - M[0, 2] * M[2, 0]) * s
+        Minv[1, 2] = (M[0, 2] * M[1, 0] - M[0, 0] * M[1, 2]) * s
+        Minv[2, 0] = (M[1, 0] * M[2, 1] - M[1, 1] * M[2, 0]) * s
+        Minv[2, 1] = (M[0, 1] * M[2, 0] - M[0, 0] * M[2, 1]) * s
+        Minv[2, 2] = (M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]) * s
+    return d
+
+
 @njit(fastmath=False, inline="always")
 def det_minus_one(F):
     """J - 1 = det(F) - 1 without cancellation: with H = F - I,
