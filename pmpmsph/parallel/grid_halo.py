@@ -45,6 +45,10 @@ class GridHalo:
             (g_lo, g_hi), (s_lo, s_hi) = decomposition.overlap(nb)
             self.plan.append((nb, slice(g_lo - off, g_hi - off), slice(s_lo - off, s_hi - off)))
             self.both.append((nb, slice(min(g_lo, s_lo) - off, max(g_hi, s_hi) - off)))
+        # (neighbour, slice sent, slice received) of each exchange, made once
+        self.routes = {"reduce": [(nb, g, sh) for nb, g, sh in self.plan],
+                       "broadcast": [(nb, sh, g) for nb, g, sh in self.plan],
+                       "sum": [(nb, sl, sl) for nb, sl in self.both]}
         faces, ghost = decomposition.faces, decomposition.ghost
         # no node is local to three ranks: the two ghost layers of an interior slab's
         # neighbours stay apart (decided from the faces, so every rank decides alike)
@@ -57,28 +61,24 @@ class GridHalo:
         index[1 + self.axis] = sl
         return blk[tuple(index)]
 
-    def _buffers_for(self, arrays, send_slice):
-        """The send and receive buffers of each neighbour for these arrays (made once)."""
-        key = (send_slice, tuple(a.shape for a in arrays))
-        bufs = self._buffers.get(key)
-        if bufs is None:
-            bufs = []
-            for _, ghost, shared in self.plan:
-                out_sl, in_sl = (ghost, shared) if send_slice == "ghost" else (shared, ghost)
-                bufs.append((np.empty(sum(self._view(a, out_sl).size for a in arrays)),
-                             np.empty(sum(self._view(a, in_sl).size for a in arrays))))
-            self._buffers[key] = bufs
-        return bufs
-
-    def _exchange(self, arrays, send_slice, recv_slice, tag, combine):
-        if not self.plan:
+    def _exchange(self, arrays, name, tag, combine):
+        """Send each neighbour the node slice `out` of every array and put what it sends into
+        the slice `in` (`self.routes[name]`: (neighbour, out, in) per neighbour), adding it
+        with `combine`. Buffers are made once per (`name`, array shapes) and reused."""
+        routes = self.routes[name]
+        if not routes:
             return
         from mpi4py import MPI
 
-        reqs, recvs = [], []
-        for (nb, ghost, shared), (sendbuf, recvbuf) in zip(self.plan,
-                                                           self._buffers_for(arrays, send_slice)):
-            out_sl, in_sl = (ghost, shared) if send_slice == "ghost" else (shared, ghost)
+        key = (name, tuple(a.shape for a in arrays))
+        bufs = self._buffers.get(key)
+        if bufs is None:
+            bufs = [(np.empty(sum(self._view(a, out_sl).size for a in arrays)),
+                     np.empty(sum(self._view(a, in_sl).size for a in arrays)))
+                    for _, out_sl, in_sl in routes]
+            self._buffers[key] = bufs
+        reqs = []
+        for (nb, out_sl, _), (sendbuf, recvbuf) in zip(routes, bufs):
             pos = 0
             for a in arrays:
                 view = self._view(a, out_sl)
@@ -87,9 +87,8 @@ class GridHalo:
             reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag))
             reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=tag))
             self.bytes_sent += sendbuf.nbytes
-            recvs.append((in_sl, recvbuf))
         MPI.Request.Waitall(reqs)
-        for in_sl, recvbuf in recvs:
+        for (_, _, in_sl), (_, recvbuf) in zip(routes, bufs):
             pos = 0
             for a in arrays:
                 view = self._view(a, in_sl)
@@ -106,40 +105,12 @@ class GridHalo:
             self.reduce(arrays)
             self.broadcast(arrays)
             return
-        if not self.both:
-            return
-        from mpi4py import MPI
-
-        key = ("both", tuple(a.shape for a in arrays))
-        bufs = self._buffers.get(key)
-        if bufs is None:
-            bufs = []
-            for _, sl in self.both:
-                size = sum(self._view(a, sl).size for a in arrays)
-                bufs.append((np.empty(size), np.empty(size)))
-            self._buffers[key] = bufs
-        reqs = []
-        for (nb, sl), (sendbuf, recvbuf) in zip(self.both, bufs):
-            pos = 0
-            for a in arrays:
-                view = self._view(a, sl)
-                sendbuf[pos:pos + view.size].reshape(view.shape)[...] = view
-                pos += view.size
-            reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=TAG_SUM))
-            reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=TAG_SUM))
-            self.bytes_sent += sendbuf.nbytes
-        MPI.Request.Waitall(reqs)
-        for (_, sl), (_, recvbuf) in zip(self.both, bufs):
-            pos = 0
-            for a in arrays:
-                view = self._view(a, sl)
-                view += recvbuf[pos:pos + view.size].reshape(view.shape)
-                pos += view.size
+        self._exchange(arrays, "sum", TAG_SUM, combine=True)
 
     def reduce(self, arrays):
         """Add every ghost node's values into its owner (arrays: nodal accumulators)."""
-        self._exchange(arrays, "ghost", "shared", TAG_REDUCE, combine=True)
+        self._exchange(arrays, "reduce", TAG_REDUCE, combine=True)
 
     def broadcast(self, arrays):
         """Copy the owners' values into the ghost nodes."""
-        self._exchange(arrays, "shared", "ghost", TAG_BCAST, combine=False)
+        self._exchange(arrays, "broadcast", TAG_BCAST, combine=False)
