@@ -16,11 +16,10 @@ from contextlib import contextmanager
 import numpy as np
 
 from ..kernels.contact import multi_field_contact, touching_separation
-from ..kernels.coupling import grid_force_kick
+from ..kernels.coupling import gather_increment, grid_force_kick
 from ..kernels.mpm import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
 from ..kernels.partition import cell_keys
 from ..kernels.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
-from ..kernels.sph_solid import gather_increment
 from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries

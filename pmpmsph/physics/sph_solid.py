@@ -31,7 +31,7 @@ The rule, automatic in a coupled scene; (2) needs one velocity field per body
      (kernels/contact.py) removes the approach of the fluid's field towards it, so the
      solid's motion compresses the fluid on the grid as it would a fluid MPM body; the change
      dv_c the contact made to the solid's field is gathered back to its SPH particles,
-     v_p += sum_I N_I dv_c,I (kernels/sph_solid.py), so the fluid's loss of momentum is
+     v_p += sum_I N_I dv_c,I (kernels/coupling.py, `gather_increment`), so the fluid's loss of momentum is
      exactly the solid's gain (sum_p N_Ip m_p = m_I). The fluid's field holds the fluid
      only: the two never mix velocities on the grid. The contact acts where the two
      fields' nodal centres of mass are closer than 1.5 times their separation when the

@@ -1,6 +1,6 @@
 """The grid contact of an SPH solid with an MPM fluid (physics/sph_solid.py): the velocity
 change the contact makes to the solid's field, gathered back to its particles
-(kernels/sph_solid.py's gather_increment), gives them exactly the momentum the fluid's field
+(kernels/coupling.py's gather_increment), gives them exactly the momentum the fluid's field
 lost, and it stops their approach."""
 import numpy as np
 
@@ -8,7 +8,7 @@ from pmpmsph.config.case import GridSpec
 from pmpmsph.kernels.contact import multi_field_contact, touching_separation
 from pmpmsph.kernels.mpm import WITH_FORCE, grid_velocity, p2g
 from pmpmsph.kernels.shapes import GIMP, static_tags, weights_1d
-from pmpmsph.kernels.sph_solid import gather_increment
+from pmpmsph.kernels.coupling import gather_increment
 from pmpmsph.physics.grid import Grid
 
 
