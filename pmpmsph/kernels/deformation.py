@@ -60,7 +60,7 @@ def advance(D, p, dim, dt, L, Fn):
 
 
 def _advance_J(D, p, dim, dt, L, Fn):
-    J = D[p] * _det3_identity_plus(dt, L)
+    J = D[p] * _det_identity_plus(dim, dt, L)
     D[p] = J
     Fn[0, 0] = J
     return J
@@ -92,14 +92,20 @@ def _advance_F(D, p, dim, dt, L, Fn):
 
 
 @njit(inline="always")
-def _det3_identity_plus(dt, L):
-    """det(I + dt L)."""
+def _det_identity_plus(dim, dt, L):
+    """det(I + dt L) over the first `dim` rows and columns (the others of L are 0 in 1D/2D;
+    `dim` is a compile-time constant, and x * 0 is not folded away under our fastmath flags,
+    so the full 3x3 formula would multiply them out)."""
     a00 = 1.0 + dt * L[0, 0]
+    if dim == 1:
+        return a00
     a11 = 1.0 + dt * L[1, 1]
-    a22 = 1.0 + dt * L[2, 2]
     a01 = dt * L[0, 1]
-    a02 = dt * L[0, 2]
     a10 = dt * L[1, 0]
+    if dim == 2:
+        return a00 * a11 - a01 * a10
+    a22 = 1.0 + dt * L[2, 2]
+    a02 = dt * L[0, 2]
     a12 = dt * L[1, 2]
     a20 = dt * L[2, 0]
     a21 = dt * L[2, 1]
