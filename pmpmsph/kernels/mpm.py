@@ -246,7 +246,7 @@ def mirror_grid_bc(dim, outside, inside, kind, normal, gvel, gdv):
 @njit
 def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield, mat,
         mtypes, mparams, mstate, prestress, gvel, gdv, origin, offset, inv_dx, strides, dt,
-        flip, lo, hi, max_reach):
+        flip, lo, hi, max_reach, want_signal):
     """Gather from the grid (eqs. 80-86) for every particle.
 
     Kinematics: v_p <- flip (v_p + sum N dv) + (1 - flip) sum N v_new (FLIP/PIC blend),
@@ -255,8 +255,8 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
     L is evaluated at the position before this step's move. Returns (bad, signal): bad is
     the index of the first particle that left the box [lo, hi], became NaN or inverted
     (det F <= 0), or -1; signal is max_p (c_p + |v_p|) of the CFL condition at the new J and
-    the velocity after this pass, computed with F (0 without; the same numbers as
-    `kernels.diagnostics.max_signal_speed`, without another pass over F).
+    the velocity after this pass, computed with F when `want_signal` (0 otherwise; the same
+    numbers as `kernels.diagnostics.max_signal_speed`, without another pass over F).
     `F` is the stored motion, F (n, 3, 3) or, in a scene of fluids, J (n,) (`advance`).
     Passing `gdv = None` skips the kinematics, `F = None` the deformation (USF/MUSL passes);
     `lp`, `pfield`, `prestress` are None when the scene has none (see `p2g`); `Fdom` is the
@@ -265,8 +265,8 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
     CPDI domain that grows beyond `max_reach` cells is reported like an inversion.
     `origin` and `offset` place the local grid as in `p2g`.
     `mat_tag` fixes the material type at compile time when all particles share it
-    (`material_tag`); `pic_tag` = (0,) when flip = 0 (PIC: the increments are not gathered),
-    () otherwise, also fixed at compile time.
+    (`material_tag`); `pic_tag` = (0,) when flip = 0 (PIC: the increments are not gathered
+    and v_p is sum N v_new itself), () otherwise, also fixed at compile time.
     """
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
@@ -337,17 +337,17 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
         if gdv is not None:
             x0 = x[p, 0] + dt * vp0
             x[p, 0] = x0
-            v[p, 0] = flip * (v[p, 0] + dv0) + (1.0 - flip) * vp0
+            v[p, 0] = vp0 if len(pic_tag) else flip * (v[p, 0] + dv0) + (1.0 - flip) * vp0
             inside = (x0 >= lo0) & (x0 <= hi0)  # no short circuit: fewer branches
             if dim > 1:
                 x1 = x[p, 1] + dt * vp1
                 x[p, 1] = x1
-                v[p, 1] = flip * (v[p, 1] + dv1) + (1.0 - flip) * vp1
+                v[p, 1] = vp1 if len(pic_tag) else flip * (v[p, 1] + dv1) + (1.0 - flip) * vp1
                 inside &= (x1 >= lo1) & (x1 <= hi1)
             if dim > 2:
                 x2 = x[p, 2] + dt * vp2
                 x[p, 2] = x2
-                v[p, 2] = flip * (v[p, 2] + dv2) + (1.0 - flip) * vp2
+                v[p, 2] = vp2 if len(pic_tag) else flip * (v[p, 2] + dv2) + (1.0 - flip) * vp2
                 inside &= (x2 >= lo2) & (x2 <= hi2)
             if not inside and bad < 0:
                 bad = p
@@ -368,12 +368,13 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
             if Fdom is not None and bad < 0 and cpdi_reach(dim, Fn, lp, p) > max_reach:
                 bad = p
             mi = mat[p]
-            speed = v[p, 0] * v[p, 0]
-            for a in range(1, dim):
-                speed += v[p, a] * v[p, a]
-            c = wave_speed(mtypes[mi], mparams[mi], J) + np.sqrt(speed)
-            if not (c <= signal):  # NaN propagates (no finite dt from a broken state)
-                signal = c
+            if want_signal:  # (only a CFL time step reads it)
+                speed = v[p, 0] * v[p, 0]
+                for a in range(1, dim):
+                    speed += v[p, a] * v[p, a]
+                c = wave_speed(mtypes[mi], mparams[mi], J) + np.sqrt(speed)
+                if not (c <= signal):  # NaN propagates (no finite dt from a broken state)
+                    signal = c
             if prestress is not None:
                 compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi],
                                       sig)

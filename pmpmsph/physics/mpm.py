@@ -70,6 +70,8 @@ class MPMStage:
         # mass and momentum but no stress, and take the grid force (`grid_force_kick`)
         self.n_p2g = self.n_g2p = self.n_stress = None
         self.signal = None  # max (c + |v|) after the last step, from G2P (see `step`)
+        # only a CFL time step reads it (`Simulation.signal_speed`); a sqrt per particle else
+        self.want_signal = case.time.cfl is not None
 
     @property
     def n_p2g(self):
@@ -275,7 +277,7 @@ class MPMStage:
                 p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n], self.mtypes,
                 self.mparams, mstate, pre, g.vel, g.dv if kinematics else None, g.node0,
                 g.offset, g.inv_dx, g.strides, dt, self.flip, g.lo, g.hi,
-                float(self.case.mpm.cpdi_reach))
+                float(self.case.mpm.cpdi_reach), self.want_signal)
         # max (c + |v|) of the owned rows, valid when this pass has the final velocities
         # too: USL's single pass and MUSL's second; after USF's first pass v changes again
         if deformation and (kinematics or self.transfer == "musl"):
