@@ -13,19 +13,6 @@ from .deformation import advance
 from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 
-@njit(inline="always")
-def stress_dot_gradient(dim, s00, s01, s02, s11, s12, s22, g0, g1, g2):
-    """(vol sigma) . grad N, the internal force term of eq. 65, with only the in-plane
-    components in 1D/2D (`dim` is a compile-time constant, and x * 0 is not folded away
-    under our fastmath flags, so the zero gradients would otherwise be multiplied out)."""
-    if dim == 1:
-        return s00 * g0, 0.0, 0.0
-    if dim == 2:
-        return s00 * g0 + s01 * g1, s01 * g0 + s11 * g1, 0.0
-    return (s00 * g0 + s01 * g1 + s02 * g2, s01 * g0 + s11 * g1 + s12 * g2,
-            s02 * g0 + s12 * g1 + s22 * g2)
-
-
 @njit
 def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, offset,
         inv_dx, strides, gmass, gmom, gforce, gmgrad, gmx, force_dt):
@@ -50,6 +37,8 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
     st[:dim] = strides
     off = np.zeros(3, np.int64)
     off[:dim] = offset
+    # as scalars: the scatter's stores could alias an array, so array loads would be redone
+    st0, st1, st2 = st[0], st[1], st[2]
     nax = node_counts(dim, strides, gmass.shape[1])
     dom = np.zeros((2, 3, 3))
     n = x.shape[0]
@@ -87,47 +76,68 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
             mv0 += force_dt * fe0
             mv1 += force_dt * fe1
             mv2 += force_dt * fe2
+        # The node values, factored axis by axis (sum factorisation of the tensor-product
+        # shape functions, N = w0 w1 w2, grad N = (d0 w1 w2, w0 d1 w2, w0 w1 d2)): plain
+        # terms N a (mass; momentum unless folded) and force-like terms
+        # N b - (vol sigma) . grad N (the force, or the folded momentum p + dt f), built up
+        # one axis at a time, so a node costs a few multiply-adds instead of forming N and
+        # grad N and the stress product anew (~15% of the step in 2D, more in 3D).
+        a0, a1, a2 = (fe0, fe1, fe2) if force_dt is None else (mv0, mv1, mv2)
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, F, dom, p, c, origin, inv_dx, st, off, nax)
             for i in range(n0):
+                wi = w0[i]
+                di = d0[i]
+                mi = wi * m
+                pi0, pi1, pi2 = wi * mv0, wi * mv1, wi * mv2
+                # force-like: (w0 b_c - d0 s_c0, w0 s_c1, w0 s_c2) per component c
+                xi0, xi1, xi2 = wi * a0 - di * s00, wi * a1 - di * s01, wi * a2 - di * s02
+                yi0, yi1, yi2 = wi * s01, wi * s11, wi * s12
+                zi0, zi1, zi2 = wi * s02, wi * s12, wi * s22
                 for j in range(n1):
-                    wij = w0[i] * w1[j]
+                    wj = w1[j]
+                    mj = wj * mi
+                    pj0, pj1, pj2 = wj * pi0, wj * pi1, wj * pi2
+                    xj0, xj1, xj2 = wj * xi0, wj * xi1, wj * xi2
+                    if dim > 1:  # (x * 0 is not folded under our fastmath flags)
+                        dj = d1[j]
+                        xj0, xj1, xj2 = xj0 - dj * yi0, xj1 - dj * yi1, xj2 - dj * yi2
+                    zj0, zj1, zj2 = wj * zi0, wj * zi1, wj * zi2
                     for k in range(n2):
-                        N = wij * w2[k]
-                        node = base + i * st[0] + j * st[1] + k * st[2]
-                        gmass[fld, node] += N * m
-                        if gforce is not None or gmgrad is not None or force_dt is not None:
-                            g0 = d0[i] * w1[j] * w2[k]
-                            g1 = w0[i] * d1[j] * w2[k]
-                            g2 = wij * d2[k]
-                        q0, q1, q2 = N * mv0, N * mv1, N * mv2  # momentum (+ dt f folded)
-                        if gforce is not None or force_dt is not None:
-                            t0, t1, t2 = stress_dot_gradient(dim, s00, s01, s02, s11, s12, s22,
-                                                             g0, g1, g2)
-                            if force_dt is not None:
-                                q0, q1, q2 = q0 - t0, q1 - t1, q2 - t2
+                        wk = w2[k]
+                        node = base + i * st0 + j * st1 + k * st2
+                        gmass[fld, node] += wk * mj
+                        f0, f1, f2 = wk * xj0, wk * xj1, wk * xj2
+                        if dim > 2:
+                            dk = d2[k]
+                            f0, f1, f2 = f0 - dk * zj0, f1 - dk * zj1, f2 - dk * zj2
+                        if force_dt is not None:  # p + dt f
+                            q0, q1, q2 = f0, f1, f2
+                        else:
+                            q0, q1, q2 = wk * pj0, wk * pj1, wk * pj2
                         gmom[fld, node, 0] += q0
                         if dim > 1:
                             gmom[fld, node, 1] += q1
                         if dim > 2:
                             gmom[fld, node, 2] += q2
                         if gforce is not None:
-                            gforce[fld, node, 0] += N * fe0 - t0
+                            gforce[fld, node, 0] += f0
                             if dim > 1:
-                                gforce[fld, node, 1] += N * fe1 - t1
+                                gforce[fld, node, 1] += f1
                             if dim > 2:
-                                gforce[fld, node, 2] += N * fe2 - t2
-                        if gmgrad is not None:
-                            gmgrad[fld, node, 0] += m * g0 * inv_dx
-                            if dim > 1:
-                                gmgrad[fld, node, 1] += m * g1 * inv_dx
-                            if dim > 2:
-                                gmgrad[fld, node, 2] += m * g2 * inv_dx
-                        if gmx is not None:
-                            for a in range(dim):
-                                gmx[fld, node, a] += N * m * x[p, a]
-
+                                gforce[fld, node, 2] += f2
+                        if gmgrad is not None or gmx is not None:  # multi-field contact
+                            N = w0[i] * w1[j] * w2[k]
+                            if gmgrad is not None:
+                                gmgrad[fld, node, 0] += m * d0[i] * w1[j] * w2[k] * inv_dx
+                                if dim > 1:
+                                    gmgrad[fld, node, 1] += m * w0[i] * d1[j] * w2[k] * inv_dx
+                                if dim > 2:
+                                    gmgrad[fld, node, 2] += m * w0[i] * w1[j] * d2[k] * inv_dx
+                            if gmx is not None:
+                                for a in range(dim):
+                                    gmx[fld, node, a] += N * m * x[p, a]
 
 MOMENTUM, WITH_FORCE, FOLDED = 0, 1, 2
 
@@ -273,6 +283,7 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
     st[:dim] = strides
     off = np.zeros(3, np.int64)
     off[:dim] = offset
+    st0, st1, st2 = st[0], st[1], st[2]
     nax = node_counts(dim, strides, gvel.shape[1])
     dom = np.zeros((2, 3, 3))
     L = np.zeros((3, 3))
@@ -298,42 +309,79 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, Fdom, dom, p, c, origin, inv_dx, st, off, nax)
+            # sum factorisation (see `p2g`): the sums over the last axis first, then the
+            # middle one, then the first, so a node costs a few multiply-adds. Components
+            # and axes beyond `dim` are left out at compile time (x * 0 is not folded).
             for i in range(n0):
+                # sums over j, k of w1 w2 u (a), d1 w2 u (b), w1 d2 u (e), w1 w2 dv (h)
+                a0 = a1 = a2 = b0 = b1 = b2 = e0 = e1 = e2 = h0 = h1 = h2 = 0.0
                 for j in range(n1):
-                    wij = w0[i] * w1[j]
+                    # sums over k of w2 u (s), d2 u (t), w2 dv (r)
+                    s0 = s1 = s2 = t0 = t1 = t2 = r0 = r1 = r2 = 0.0
                     for k in range(n2):
-                        N = wij * w2[k]
-                        node = base + i * st[0] + j * st[1] + k * st[2]
+                        wk = w2[k]
+                        node = base + i * st0 + j * st1 + k * st2
                         u0 = gvel[fld, node, 0]
-                        u1 = gvel[fld, node, 1] if dim > 1 else 0.0
-                        u2 = gvel[fld, node, 2] if dim > 2 else 0.0
-                        if gdv is not None:
-                            vp0 += N * u0
+                        s0 += wk * u0
+                        if dim > 1:
+                            u1 = gvel[fld, node, 1]
+                            s1 += wk * u1
+                        if dim > 2:
+                            u2 = gvel[fld, node, 2]
+                            s2 += wk * u2
+                            if F is not None:
+                                dk = d2[k]
+                                t0 += dk * u0
+                                t1 += dk * u1
+                                t2 += dk * u2
+                        if gdv is not None and len(pic_tag) == 0:  # PIC needs no increments
+                            r0 += wk * gdv[fld, node, 0]
                             if dim > 1:
-                                vp1 += N * u1
+                                r1 += wk * gdv[fld, node, 1]
                             if dim > 2:
-                                vp2 += N * u2
-                            if len(pic_tag) == 0:  # PIC needs no increments
-                                dv0 += N * gdv[fld, node, 0]
-                                if dim > 1:
-                                    dv1 += N * gdv[fld, node, 1]
-                                if dim > 2:
-                                    dv2 += N * gdv[fld, node, 2]
+                                r2 += wk * gdv[fld, node, 2]
+                    wj = w1[j]
+                    a0 += wj * s0
+                    h0 += wj * r0
+                    if dim > 1:
+                        a1 += wj * s1
+                        h1 += wj * r1
                         if F is not None:
-                            g0 = d0[i] * w1[j] * w2[k]
-                            L00 += u0 * g0
-                            if dim > 1:
-                                g1 = w0[i] * d1[j] * w2[k]
-                                L01 += u0 * g1
-                                L10 += u1 * g0
-                                L11 += u1 * g1
+                            dj = d1[j]
+                            b0 += dj * s0
+                            b1 += dj * s1
                             if dim > 2:
-                                g2 = wij * d2[k]
-                                L02 += u0 * g2
-                                L12 += u1 * g2
-                                L20 += u2 * g0
-                                L21 += u2 * g1
-                                L22 += u2 * g2
+                                b2 += dj * s2
+                    if dim > 2:
+                        a2 += wj * s2
+                        h2 += wj * r2
+                        if F is not None:
+                            e0 += wj * t0
+                            e1 += wj * t1
+                            e2 += wj * t2
+                wi = w0[i]
+                if gdv is not None:
+                    vp0 += wi * a0
+                    dv0 += wi * h0
+                    if dim > 1:
+                        vp1 += wi * a1
+                        dv1 += wi * h1
+                    if dim > 2:
+                        vp2 += wi * a2
+                        dv2 += wi * h2
+                if F is not None:  # L_ca = sum u_c grad_a N
+                    di = d0[i]
+                    L00 += di * a0
+                    if dim > 1:
+                        L10 += di * a1
+                        L01 += wi * b0
+                        L11 += wi * b1
+                    if dim > 2:
+                        L20 += di * a2
+                        L21 += wi * b2
+                        L02 += wi * e0
+                        L12 += wi * e1
+                        L22 += wi * e2
         if gdv is not None:
             x0 = x[p, 0] + dt * vp0
             x[p, 0] = x0
