@@ -78,7 +78,6 @@ class PrescribedVelocity:
         n = p.n_owned
         ids = p["vpres_id"][:n]
         v = p["v"]
-        x = p["x"]
         for j, s in enumerate(self.specs):
             if not (s.start <= time < s.until):
                 continue
@@ -87,10 +86,7 @@ class PrescribedVelocity:
                 if val is not None:
                     v[:n, a][sel] = val
                     if x_before is not None:
-                        moved = x_before[j][:, a] + dt * val
-                        if "u" in p:  # the displacement of the hourglass control follows
-                            p["u"][:n, a][sel] += moved - x[:n, a][sel]
-                        x[:n, a][sel] = moved
+                        p.move(sel, a, x_before[j][:, a] + dt * val)
 
     def positions(self):
         """Positions of each constraint's particles at the start of a step (for `apply`);

@@ -208,7 +208,7 @@ class MPMStage:
             for lo, hi, stress, force in parts:
                 if hi == lo and lo > 0:
                     continue
-                sigma = p["sigma"][lo:hi] if stress else np.zeros((hi - lo, 3, 3))
+                sigma = p["sigma"][lo:hi] if stress else self._zero_stress(hi - lo)
                 p2g(*self.tags, p["x"][lo:hi], p["v"][lo:hi], p["mass"][lo:hi],
                     p["vol"][lo:hi], sigma, None if fext is None else fext[lo:hi],
                     None if lp is None else lp[lo:hi], None if F is None else F[lo:hi],
@@ -233,13 +233,15 @@ class MPMStage:
             # the SPH solids in contact take the contact's change of their fields, once a
             # step (the solve with forces)
             gather = with_force and self.multi and self.n_p2g > self.n_stress
-            if gather:
-                before = g.vel.copy()
+            if gather:  # the velocities before contact, over the nodes particles can reach
+                lo, hi = self._span
+                dvc = self._contact_change()
+                dvc[:, lo:hi] = g.vel[:, lo:hi]
             if self.multi:
                 multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv,
                                     self.friction, self.mass_cutoff, self.contact_gap)
-            if gather:
-                dvc = g.vel - before
+            if gather:  # (outside the span dvc is stale, but no particle's stencil is there)
+                np.subtract(g.vel[:, lo:hi], dvc[:, lo:hi], out=dvc[:, lo:hi])
             # node-local: ghost nodes, holding the full sums (`GridHalo.sum`), get the
             # owners' velocities (and contact changes) bit for bit
             self.bcs.apply(time, g.vel, g.dv)
@@ -252,6 +254,18 @@ class MPMStage:
         # (the ghosts hold the full nodal mass and force too, from `GridHalo.sum`)
         if with_force and self.conservative and self.n_p2g > self.n_g2p:
             self._grid_force_kick(dt)
+
+    def _contact_change(self):
+        """A reused array shaped like the grid velocities, for the contact's change."""
+        if getattr(self, "_dvc", None) is None or self._dvc.shape != self.grid.vel.shape:
+            self._dvc = np.zeros_like(self.grid.vel)
+        return self._dvc
+
+    def _zero_stress(self, n):
+        """n rows of zero stress (reused) for the P2G rows that scatter none."""
+        if getattr(self, "_zeros", None) is None or len(self._zeros) < n:
+            self._zeros = np.zeros((max(n, 16), 3, 3))
+        return self._zeros[:n]
 
     def _grid_force_kick(self, dt):
         """The transition SPH rows take their share of the nodal forces (conservative

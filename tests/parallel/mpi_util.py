@@ -31,3 +31,16 @@ def gathered(dist, sim, names):
 
 def rel_diff(a, b):
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
+
+
+def assert_equals_one_rank(dist, sim, ref, names, exact=(), rtol=1e-10):
+    """The N-rank run `sim` holds the particles of the one-rank run `ref` (matched by gid):
+    `exact` fields bit for bit, `names` to `rtol` relative (DESIGN.md §4 invariant)."""
+    mine = gathered(dist, sim, tuple(names) + tuple(exact))
+    p = ref.particles
+    order = np.argsort(p["gid"])
+    assert np.array_equal(mine["gid"], p["gid"][order])
+    for name in exact:
+        assert np.array_equal(mine[name], p[name][order]), name
+    for name in names:
+        assert rel_diff(mine[name], p[name][order]) < rtol, name

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from mpi_util import gathered, rel_diff, serial, world
+from mpi_util import assert_equals_one_rank, serial, world
 from scenes import coupled_bar_1d, coupled_stress_bar
 
 pytestmark = pytest.mark.mpi
@@ -11,13 +11,7 @@ FIELDS = ("x", "v", "sigma", "F")
 
 
 def _compare(dist, sim, ref):
-    mine = gathered(dist, sim, FIELDS + ("method",))
-    p = ref.particles
-    order = np.argsort(p["gid"])
-    assert np.array_equal(mine["gid"], p["gid"][order])
-    assert np.array_equal(mine["method"], p["method"][order])
-    for name in FIELDS:
-        assert rel_diff(mine[name], p[name][order]) < 1e-10, name
+    assert_equals_one_rank(dist, sim, ref, FIELDS, exact=("method",))
 
 
 def _wave(sim, k=1):
@@ -89,24 +83,29 @@ def test_plate_with_hole_equals_one_rank(hourglass):
     _compare(dist, sim, ref)
 
 
-def test_float_equals_one_rank():
-    """Scene 7 with the coupling (cases/coupled_float.toml) at spacing 0.01, 200 steps: an
-    MPM ice block on SPH water in a tank of SPH dummy walls, hydrostatic start (a global
-    maximum), the water's pair forces on the block's points and their reactions (`fsi`) in
-    P2G, the block's nodes cut by the slab faces."""
+def _case_equals_one_rank(name, bodies, steps=200):
+    """cases/`name` with every body at spacing 0.01, `steps` steps on N ranks against one."""
     from pathlib import Path
 
     from pmpmsph import load_case_file
     from pmpmsph.simulation import Simulation
 
-    path = Path(__file__).resolve().parents[2] / "cases" / "coupled_float.toml"
-    sets = [(f"bodies[{i}].spacing", 0.01) for i in range(5)]
+    path = Path(__file__).resolve().parents[2] / "cases" / name
+    sets = [(f"bodies[{i}].spacing", 0.01) for i in range(bodies)]
     dist = world()
     sim = Simulation(load_case_file(path, overrides=sets), dist=dist)
     ref = Simulation(load_case_file(path, overrides=sets), dist=serial())
-    sim.run(max_steps=200)
-    ref.run(max_steps=200)
+    sim.run(max_steps=steps)
+    ref.run(max_steps=steps)
     _compare(dist, sim, ref)
+
+
+def test_float_equals_one_rank():
+    """Scene 7 with the coupling (cases/coupled_float.toml) at spacing 0.01, 200 steps: an
+    MPM ice block on SPH water in a tank of SPH dummy walls, hydrostatic start (a global
+    maximum), the water's pair forces on the block's points and their reactions (`fsi`) in
+    P2G, the block's nodes cut by the slab faces."""
+    _case_equals_one_rank("coupled_float.toml", 5)
 
 
 def test_sph_block_in_mpm_water_equals_one_rank():
@@ -114,16 +113,4 @@ def test_sph_block_in_mpm_water_equals_one_rank():
     200 steps: an SPH ice block in MPM water, hydrostatic MPM start, the block's particles
     in their own grid velocity field in contact with the water's (physics/sph_solid.py),
     the contact's change gathered back onto the block, the slab faces cutting both."""
-    from pathlib import Path
-
-    from pmpmsph import load_case_file
-    from pmpmsph.simulation import Simulation
-
-    path = Path(__file__).resolve().parents[2] / "cases" / "coupled_sph_solid_float.toml"
-    sets = [(f"bodies[{i}].spacing", 0.01) for i in range(2)]
-    dist = world()
-    sim = Simulation(load_case_file(path, overrides=sets), dist=dist)
-    ref = Simulation(load_case_file(path, overrides=sets), dist=serial())
-    sim.run(max_steps=200)
-    ref.run(max_steps=200)
-    _compare(dist, sim, ref)
+    _case_equals_one_rank("coupled_sph_solid_float.toml", 2)

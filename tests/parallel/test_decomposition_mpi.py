@@ -7,7 +7,7 @@ global quantities and do not depend on the number of ranks.
 import numpy as np
 import pytest
 
-from mpi_util import gathered, rel_diff, serial, world
+from mpi_util import assert_equals_one_rank, gathered, rel_diff, serial, world
 from scenes import dam_break, loaded_bar, two_disks
 
 pytestmark = pytest.mark.mpi
@@ -135,12 +135,7 @@ def test_state_after_200_steps_equals_one_rank(scene, kwargs):
     sim.run(max_steps=200)
     ref.run(max_steps=200)
     names = ["x", "v", "F" if "F" in ref.particles else "J", "sigma"]  # fluids store J
-    mine = gathered(dist, sim, names)
-    p = ref.particles
-    order = np.argsort(p["gid"])
-    assert np.array_equal(mine["gid"], p["gid"][order])
-    for name in names:
-        assert rel_diff(mine[name], p[name][order]) < 1e-10, name
+    assert_equals_one_rank(dist, sim, ref, names)
 
 
 def test_load_balancer_reduces_imbalance_and_holds_still():

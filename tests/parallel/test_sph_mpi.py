@@ -8,7 +8,7 @@ with dummy walls (2D, slab faces crossed by water and walls), and the rubber rin
 import numpy as np
 import pytest
 
-from mpi_util import gathered, rel_diff, serial, world
+from mpi_util import assert_equals_one_rank, serial, world
 from scenes import sph_bar_1d, sph_dam_break
 
 pytestmark = pytest.mark.mpi
@@ -22,12 +22,7 @@ def _bar_velocity(sim):
 
 
 def _compare(dist, sim, ref):
-    mine = gathered(dist, sim, FIELDS)
-    p = ref.particles
-    order = np.argsort(p["gid"])
-    assert np.array_equal(mine["gid"], p["gid"][order])
-    for name in FIELDS:
-        assert rel_diff(mine[name], p[name][order]) < 1e-10, name
+    assert_equals_one_rank(dist, sim, ref, FIELDS)
 
 
 @pytest.mark.parametrize("integrator", ["verlet", "predictor_corrector", "rk3"])

@@ -1,5 +1,4 @@
 """Bodies seeded from mesh files (meshio): particle volumes add up to the mesh's measure."""
-import os
 
 import meshio
 import numpy as np
