@@ -1,5 +1,5 @@
-"""`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--no-peers] [--install-peers]`;
-`... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`.
+"""`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--dim 3] [--no-peers]
+[--install-peers]`; `... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`.
 
 Prints particle-steps per second for our solver and for the peers of ../shared/peers run in
 the same invocation (machines are shared and noisy: ratios taken together hold, absolute
@@ -21,7 +21,10 @@ def main(argv=None):
     tp.add_argument("method", choices=["mpm", "sph"])
     tp.add_argument("--dx", type=float, nargs="+", default=[0.02],
                     help="sph: particle spacing(s) of the dam break")
-    tp.add_argument("--n-grid", type=int, nargs="+", default=[128, 256])
+    tp.add_argument("--n-grid", type=int, nargs="+", default=None,
+                    help="cells per side (default 128 256 in 2D, 32 48 in 3D)")
+    tp.add_argument("--dim", type=int, choices=[2, 3], default=2,
+                    help="mpm: 3 runs the peers' scene as a cube (ours only: the peers are 2D)")
     tp.add_argument("--steps", type=int, default=400)
     tp.add_argument("--repeat", type=int, default=3)
     tp.add_argument("--no-peers", action="store_true")
@@ -91,14 +94,17 @@ def main(argv=None):
         install_peers()
     if args.method == "sph":
         return throughput_sph(args, run_peer)
-    results = {"ours": [], "peers": [], "small": None}
+    results = {"ours": [], "peers": [], "small": None, "dim": args.dim}
+    grids = args.n_grid or ([128, 256] if args.dim == 2 else [32, 48])
+    peers = not args.no_peers and args.dim == 2
+    label = "pmpmsph (USL, quadratic)" if args.dim == 2 else "pmpmsph 3D (USL, quadratic)"
     print(f"{'program':<28}{'n_grid':>7}{'particles':>11}{'M particle-steps/s':>20}")
-    for n_grid in args.n_grid:
-        r = bench_mpm(n_grid, args.steps, args.repeat)
+    for n_grid in grids:
+        r = bench_mpm(n_grid, args.steps, args.repeat, dim=args.dim)
         results["ours"].append(r)
-        print(f"{'pmpmsph (USL, quadratic)':<28}{n_grid:>7}{r['particles']:>11}"
+        print(f"{label:<28}{n_grid:>7}{r['particles']:>11}"
               f"{r['rate'] / 1e6:>20.2f}", flush=True)
-        if args.no_peers:
+        if not peers:
             continue
         for peer in ("taichi_mlsmpm.py", "numba_minimal_mlsmpm.py"):
             rate, note = run_peer(peer, [n_grid])
@@ -109,14 +115,15 @@ def main(argv=None):
     small = bench_small()
     results["small"] = small
     print(f"scene 1 (10 particles): {small['steps_per_s']:.0f} steps/s")
-    if not args.no_peers:
+    if peers:
         print("\nratios (ours / peer, same invocation):")
         for r in results["ours"]:
             for p in results["peers"]:
                 if p["n_grid"] == r["n_grid"] and p["rate"]:
                     print(f"  n_grid {r['n_grid']}: / {p['peer']}: {r['rate'] / p['rate']:.2f}")
     os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "throughput_mpm.json")
+    path = os.path.join(args.out, "throughput_mpm.json" if args.dim == 2
+                        else "throughput_mpm_3d.json")
     with open(path, "w") as fh:
         json.dump(results, fh, indent=1)
     print(f"written {path}")

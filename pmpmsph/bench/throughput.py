@@ -6,6 +6,8 @@ block of (n_grid/2)^2 * 4 fluid particles falling at 1 m/s, quadratic B-spline, 
 gamma = 1 and kappa = E = 400 (the peers' p = -E (J - 1) to first order) and walls that stop
 only inflow, like the peers'. We carry what a real solver carries (full F, Cauchy stress,
 material dispatch, boundary conditions), the peers only J and C.
+mpm --dim 3: the same scene as a cube (n_grid^3 particles), ours only, for the 27-node
+stencil (the peers are 2D).
 small: BENCHMARKS.md scene 1 (10 particles) in steps per second, for the per-step overhead.
 sph: the dam break of ../shared/peers/pysph_dam_break.sh (PySPH examples/dam_break_2d.py,
 WCSPH): cases/sph_dam_break.toml at the same dx, h = 1.3 dx, c0, alpha and integrator
@@ -17,15 +19,17 @@ import time
 from ..scene_api import Scene
 
 
-def mpm_peer_scene(n_grid, shape="quadratic", transfer="usl"):
+def mpm_peer_scene(n_grid, shape="quadratic", transfer="usl", dim=2):
+    """The peers' scene; dim = 3 is its cube version (n_grid^3 particles in a 0.4^3 block,
+    no peer to compare with: they are 2D)."""
     n_side = n_grid  # (n_grid/2)^2 * 4 particles = n_grid^2 on a 0.4 x 0.4 lattice
-    sc = Scene(2, grid=dict(origin=[0.0, 0.0], length=[1.0, 1.0], cells=[n_grid, n_grid]),
-               time=dict(end=1e9, dt=2e-4 * 128 / n_grid), gravity=[0.0, -9.8],
+    sc = Scene(dim, grid=dict(origin=[0.0] * dim, length=[1.0] * dim, cells=[n_grid] * dim),
+               time=dict(end=1e9, dt=2e-4 * 128 / n_grid), gravity=[0.0, -9.8, 0.0][:dim],
                mpm=dict(shape=shape, transfer=transfer, flip=0.0))
     sc.material("fluid", model="tait", rho=1.0, kappa=400.0, gamma=1.0)
-    sc.body(name="block", material="fluid", shape="box", min=[0.2, 0.2], max=[0.6, 0.6],
-            spacing=0.4 / n_side, velocity=[0.0, -1.0])
-    for face in ("x-", "x+", "y-", "y+"):
+    sc.body(name="block", material="fluid", shape="box", min=[0.2] * dim, max=[0.6] * dim,
+            spacing=0.4 / n_side, velocity=[0.0, -1.0, 0.0][:dim])
+    for face in ("x-", "x+", "y-", "y+", "z-", "z+")[: 2 * dim]:
         sc.boundary(face=face, type="friction", friction=0.0)
     return sc
 
@@ -43,8 +47,8 @@ def time_simulation(sim, steps, warmup=20, repeat=3):
     return best, warm
 
 
-def bench_mpm(n_grid=128, steps=400, repeat=3, shape="quadratic"):
-    sim = mpm_peer_scene(n_grid, shape=shape).simulation()
+def bench_mpm(n_grid=128, steps=400, repeat=3, shape="quadratic", dim=2):
+    sim = mpm_peer_scene(n_grid, shape=shape, dim=dim).simulation()
     n = sim.particles.n_owned
     el, warm = time_simulation(sim, steps, repeat=repeat)
     phases = sim.timers.as_dict()
