@@ -202,5 +202,5 @@ def main(argv=None):
         print(f"[rank {dist.rank}] internal error, stopping all ranks:\n"
               + traceback.format_exc(), file=sys.stderr, flush=True)
         if dist.size > 1:
-            dist.comm.Abort(EXIT_RUNTIME)
+            dist.abort(EXIT_RUNTIME)
         return EXIT_RUNTIME

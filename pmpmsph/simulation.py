@@ -382,7 +382,7 @@ class Simulation(Restart):
                 where = "grid" if self.case.grid else "domain"
                 cause = f"left the {where} at x = {np.round(x, 6).tolist()}"
         if self.dist.size > 1:  # every rank reports the same failure (printed once, by rank 0)
-            found = [f for f in self.dist.comm.allgather((gid, cause)) if f[0] >= 0]
+            found = [f for f in self.dist.allgather((gid, cause)) if f[0] >= 0]
             gid, cause = found[0] if found else (gid, cause)
         raise RunError(self.step_count + 1, gid, cause)
 

@@ -42,12 +42,9 @@ def steps_for(sim, n, on_step=None):
 def gathered(sim, names):
     """Global arrays of the owned rows of `names`, sorted by gid, on every rank."""
     p = sim.particles
-    comm = sim.dist.comm
-    gid = p["gid"].copy()
-    parts = {name: p[name].copy() for name in names}
-    if sim.dist.size > 1:
-        gid = np.concatenate(comm.allgather(gid))
-        parts = {k: np.concatenate(comm.allgather(v)) for k, v in parts.items()}
+    dist = sim.dist
+    gid = np.concatenate(dist.allgather(p["gid"].copy()))
+    parts = {k: np.concatenate(dist.allgather(p[k].copy())) for k in names}
     order = np.argsort(gid)
     return {k: v[order] for k, v in parts.items()}
 

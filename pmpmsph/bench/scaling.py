@@ -81,7 +81,7 @@ def worker(argv):
             "halo_bytes": sim.mpm.halo.bytes_sent - halo0,
             "migration_bytes": migrate.bytes_sent - mig0,
             "particles": sim.particles.n_owned}
-    everyone = dist.comm.gather(mine)
+    everyone = dist.gather(mine)
     if dist.is_root:
         result = {"ranks": dist.size, "particles": int(n_global), "steps": a.steps,
                   "wall": wall, "per_rank": everyone,

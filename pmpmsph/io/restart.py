@@ -162,7 +162,7 @@ class Restart:
                 out = fn()
             except Exception as exc:  # noqa: BLE001 - reported as bad input below
                 err = f"cannot use {key} file: {exc}"
-        errs = self.dist.comm.allgather(err) if self.dist.size > 1 else [err]
+        errs = self.dist.allgather(err)
         first = next((e for e in errs if e), None)
         if first:
             raise ConfigError(key, first)

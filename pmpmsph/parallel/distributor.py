@@ -92,6 +92,18 @@ class Distributor:
             return np.array([count], dtype=np.int64)
         return np.array(self.comm.allgather(int(count)), dtype=np.int64)
 
+    def allgather(self, obj):
+        """Every rank's (small, picklable) object, on every rank, as a list."""
+        if self.size == 1:
+            return [obj]
+        return self.comm.allgather(obj)
+
+    def gather(self, obj, root=0):
+        """Every rank's object as a list on `root` (None elsewhere)."""
+        if self.size == 1:
+            return [obj]
+        return self.comm.gather(obj, root=root)
+
     def bcast(self, obj, root=0):
         if self.size == 1:
             return obj

@@ -21,11 +21,11 @@ def serial():
 def gathered(dist, sim, names):
     """Global arrays of `names`, sorted by gid, on every rank."""
     p = sim.particles
-    gid = np.concatenate(dist.comm.allgather(p["gid"].copy()))
+    gid = np.concatenate(dist.allgather(p["gid"].copy()))
     order = np.argsort(gid)
     out = {"gid": gid[order]}
     for name in names:
-        out[name] = np.concatenate(dist.comm.allgather(p[name].copy()))[order]
+        out[name] = np.concatenate(dist.allgather(p[name].copy()))[order]
     return out
 
 

@@ -63,8 +63,8 @@ def test_ghost_nodes_hold_the_owners_values_bit_for_bit(thin):
     gidx = g.global_index()
     key = gidx[0] * 100_000 + gidx[1]
     rows = np.concatenate([g.mass.T, g.mom[0], g.vel[0], g.dv[0]], axis=1)
-    keys = np.concatenate(dist.comm.allgather(key))
-    vals = np.concatenate(dist.comm.allgather(rows))
+    keys = np.concatenate(dist.allgather(key))
+    vals = np.concatenate(dist.allgather(rows))
     order = np.argsort(keys, kind="stable")
     keys, vals = keys[order], vals[order]
     dup = np.nonzero(keys[1:] == keys[:-1])[0]
@@ -107,7 +107,7 @@ def test_migration_conserves_count_mass_momentum_and_gids():
     dist = world()
     sim = dam_break().simulation(dist=dist)
     ref = dam_break().simulation(dist=serial())
-    gids0 = np.sort(np.concatenate(dist.comm.allgather(sim.particles["gid"].copy())))
+    gids0 = np.sort(np.concatenate(dist.allgather(sim.particles["gid"].copy())))
     for _ in range(6):  # 600 steps: the front runs across the slab faces
         sim.run(max_steps=100)
         ref.run(max_steps=100)
@@ -115,7 +115,7 @@ def test_migration_conserves_count_mass_momentum_and_gids():
         assert d["mass"] == pytest.approx(r["mass"], rel=1e-12)
         assert d["px"] == pytest.approx(r["px"], rel=1e-8, abs=1e-9 * abs(r["py"]))
         assert d["py"] == pytest.approx(r["py"], rel=1e-8)
-        gids = np.sort(np.concatenate(dist.comm.allgather(sim.particles["gid"].copy())))
+        gids = np.sort(np.concatenate(dist.allgather(sim.particles["gid"].copy())))
         assert np.array_equal(gids, gids0)
     assert dist.sum(sim.migrated) > 0  # particles did cross faces
 
@@ -156,7 +156,7 @@ def test_load_balancer_reduces_imbalance_and_holds_still():
     assert before > 0.5 and after < 0.5 * before
     equal = sim.decomposition.with_faces(
         np.round(np.linspace(0, 40, dist.size + 1)).astype(np.int64))
-    x_all = np.concatenate(dist.comm.allgather(sim.particles["x"].copy()))
+    x_all = np.concatenate(dist.allgather(sim.particles["x"].copy()))
     counts0 = np.bincount(equal.owner(x_all), minlength=dist.size)  # equal slabs' counts
     counts1 = dist.gather_counts(sim.particles.n_owned)
     imbalance = lambda c: c.max() / c.mean() - 1.0  # noqa: E731
