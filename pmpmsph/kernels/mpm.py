@@ -9,6 +9,7 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.dispatch import compute_stress_tagged, wave_speed
+from ..materials.fluid import stress_tait_of_jm1
 from .deformation import advance
 from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
@@ -423,13 +424,16 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
                 c = wave_speed(mtypes[mi], mparams[mi], J) + np.sqrt(speed)
                 if not (c <= signal):  # NaN propagates (no finite dt from a broken state)
                     signal = c
-            if prestress is not None:
+            # straight into the particle's row unless a pre-stress is added (the models
+            # only write their output)
+            out = sig if prestress is not None else sigma[p]
+            if F.ndim == 1:  # J alone: every particle a Tait fluid (`Case.tracks_J_only`)
+                stress_tait_of_jm1(J - 1.0, L, mparams[mi], out)
+            else:
                 compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi],
-                                      sig)
+                                      out)
+            if prestress is not None:
                 for a in range(3):
                     for b in range(3):
                         sigma[p, a, b] = sig[a, b] + prestress[p, a, b]
-            else:  # straight into the particle's row (the models only write their output)
-                compute_stress_tagged(mat_tag, mtypes[mi], Fn, L, dt, mstate[p], mparams[mi],
-                                      sigma[p])
     return bad, signal
