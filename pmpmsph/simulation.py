@@ -21,7 +21,8 @@ from .materials.dispatch import material_tag
 from .parallel.decomposition import Decomposition
 from .parallel.distributor import Distributor
 from .parallel.balance import LoadBalancer
-from .parallel.migration import MigrationSchedule, migrate, migrate_all
+from .parallel.rebalancing import Rebalancing
+from .parallel.migration import MigrationSchedule, migrate
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
 from .timing import Timers
@@ -33,8 +34,6 @@ log = logging.getLogger("pmpmsph")
 SORT_EVERY = 100
 #: below this many particles per rank everything is in cache and sorting buys nothing
 SORT_MIN_PARTICLES = 20_000
-#: timer phases that are a rank's own work (the rest is waiting, I/O or bookkeeping)
-COMPUTE_PHASES = ("p2g", "grid", "g2p", "sph", "integrate", "neighbours", "coupling")
 
 
 def _hms(seconds):
@@ -42,7 +41,7 @@ def _hms(seconds):
     return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
 
 
-class Simulation(Restart):
+class Simulation(Restart, Rebalancing):
     def __init__(self, case, dist=None, out_dir=None, overwrite=False, write_output=True):
         t0 = time.perf_counter()
         self.case = case
@@ -322,49 +321,6 @@ class Simulation(Restart):
         return (out[0] > 0.0, out[1] if speed is not None else None,
                 out[-1] if signal is not None else None)
 
-    def rebalance(self, force_faces=None):
-        """Move slab faces if the work is out of balance (collective); True if they moved."""
-        dec = self.decomposition
-        cells = list(dec.spec.cells)
-        nodes_per_layer = (float(np.prod([c + 1 for a, c in enumerate(cells) if a != dec.axis]))
-                           if self.mpm is not None else 0.0)
-        if force_faces is not None:
-            faces, before, after = np.asarray(force_faces), None, None
-        else:
-            faces, before, after = self.balancer.propose(dec, self.particles["x"],
-                                                         nodes_per_layer, self._busy())
-        if faces is None:
-            return False
-        self._apply_faces(faces)
-        self.migrated += migrate_all(self.decomposition, self.particles, self.step_count)
-        self.migration.migrated()
-        if self.balancer is not None:
-            self.balancer.history.append((self.step_count, before, after, faces.tolist()))
-        log.info("step %d: slab faces moved to %s (imbalance %s -> %s)", self.step_count,
-                 faces.tolist(), f"{before:.2f}" if before is not None else "?",
-                 f"{after:.2f}" if after is not None else "?")
-        return True
-
-    def _busy(self):
-        """Every rank's compute seconds since the last call (balance_by = "time"), or None:
-        the stages' kernel phases, not the waiting in exchanges (collective)."""
-        if self.case.parallel.balance_by != "time":
-            return None
-        now = sum(self.timers.total.get(k, 0.0) for k in COMPUTE_PHASES)
-        last, self._busy_mark = self._busy_mark, now
-        if self.step_count == 0:  # nothing measured yet (the balance before step 1)
-            return None
-        busy = self.dist.allgather_float(now - last if now >= last else now)
-        return busy if np.all(busy > 0) else None
-
-    def _apply_faces(self, faces):
-        """New slab faces for the decomposition and the stages (particles stay put)."""
-        self.decomposition = self.decomposition.with_faces(faces)
-        if self.mpm is not None:
-            self.mpm.set_decomposition(self.decomposition)
-        if self.sph is not None:
-            self.sph.set_decomposition(self.decomposition)
-
     def _fail(self, bad):
         p = self.particles
         gid, cause = -1, "failure on another rank"
@@ -465,4 +421,3 @@ class Simulation(Restart):
     case_dir = None
     _last_checkpoint_step = -1
     _fused_signal = (-1, 0.0)  # (step it belongs to, global max (c + |v|) from G2P)
-    _busy_mark = 0.0  # compute seconds at the last load-balance check (balance_by = "time")
