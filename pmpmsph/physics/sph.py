@@ -43,6 +43,7 @@ from ..kernels.sph_integrate import (
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..kernels.sph_walls import wall_state
 from ..particles import FieldSpec
+from .hydrostatic import fluid_columns
 from ..timing import Timers
 
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
@@ -302,43 +303,17 @@ class SPHStage:
                               p["sigma"], p["vol"], p["mass"], self.spec.pressure_min)
 
     def hydrostatic_start(self):
-        """Fluid bodies start at rest in the hydrostatic state below their top (along g):
-        integrating dp/dz = rho(p) |g| with the Tait law rho = rho0 (1 + p/kappa)^(1/gamma)
-        (seed 003, eq. 50) from p = 0 at the top gives, at depth z,
-            rho = rho0 (1 + (gamma - 1)/gamma rho0 |g| z/kappa)^(1/(gamma - 1)),
-        and rho = rho0 exp(rho0 |g| z/kappa) for gamma = 1 (the limit).
-        The top is the body's highest particle plus half a spacing (a flat surface).
-        Without it a column seeded at rho0 drops by its compression and rings
-        (cases/sph_hydrostatic.toml). An initial condition: `Simulation` applies it once,
-        after seeding and the first balance (collective: the top is a global maximum), before
-        the first time step is chosen; a restart restores rho instead."""
-        from ..materials.codes import TAIT_FLUID
-
-        p = self.p
-        n = p.n_owned
-        g = float(np.linalg.norm(self.gravity))
-        if g == 0.0:
-            return
-        up = -self.gravity[: self.dim] / g
-        height = p["x"][:n] @ up
-        for i, b in enumerate(self.case.bodies):
-            mi = list(self.case.materials).index(b.material)
-            if b.wall or b.method != "sph" or self.mtypes[mi] != TAIT_FLUID:
-                continue
-            mine = (p["body"][:n] == i) & (p["method"][:n] == 1)
-            top = float(height[mine].max()) if mine.any() else -np.inf
-            if self.halo_enabled and self.dist.size > 1:
-                top = self.dist.max(top)
-            if not np.isfinite(top):
-                continue
-            top += 0.5 * self.spec.spacing
-            kappa, gamma, rho0 = self.mparams[mi, 0], self.mparams[mi, 1], self.mparams[mi, 2]
-            s = rho0 * g * (top - height[mine]) / kappa
-            if gamma == 1.0:
-                p["rho"][:n][mine] = rho0 * np.exp(s)
-            else:
-                p["rho"][:n][mine] = rho0 * np.exp(np.log1p((gamma - 1.0) / gamma * s)
-                                                   / (gamma - 1.0))
+        """Fluid bodies start at rest in the hydrostatic state below their top, along g
+        (physics/hydrostatic.py). An initial condition: `Simulation` applies it once, after
+        seeding and the first balance (collective: the top is a global maximum), before the
+        first time step is chosen; a restart restores rho instead."""
+        n = self.p.n_owned
+        half = 0.5 * self.spec.spacing
+        for mine, rho, _ in fluid_columns(self.case, self.p, (self.mtypes, self.mparams),
+                                          self.gravity[: self.dim], "sph",
+                                          lambda body, up: half,
+                                          self.dist if self.halo_enabled else None):
+            self.p["rho"][:n][mine] = rho
 
     def initialise(self):
         """Stress from the initial state, then the first rates (before step 1)."""

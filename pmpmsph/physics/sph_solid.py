@@ -65,6 +65,8 @@ it (0.1132-0.1138 over t = 1.8-3 s) while the water closes in to 0.49 spacing.
 """
 import numpy as np
 
+from .hydrostatic import fluid_columns
+
 
 def solid_force(p, lo, hi, gravity):
     """fext = m (a - g) for the SPH solid rows [lo, hi) in contact: P2G scatters it into
@@ -75,43 +77,23 @@ def solid_force(p, lo, hi, gravity):
 
 def hydrostatic_mpm(case, particles, materials, gravity, dist=None):
     """MPM fluid (Tait) bodies at rest in the hydrostatic state below their top, as
-    `SPHStage.hydrostatic_start` does for SPH ones (seed 003 eq. 50 with dp/dz = rho |g|):
-    rho(z) = rho0 (1 + (gamma - 1)/gamma rho0 |g| z/kappa)^(1/(gamma - 1)), J = rho0/rho
+    `SPHStage.hydrostatic_start` does for SPH ones (physics/hydrostatic.py): J = rho0/rho
     (F = diag(J, 1, 1): the Tait stress depends on J alone), vol = J vol0, sigma = -p I with
     p = kappa (J^-gamma - 1). The top is the body's highest point plus half its spacing.
     Collective when parallel (the top is a global maximum)."""
-    from ..materials.codes import TAIT_FLUID
-
-    mtypes, mparams = materials
     p = particles
     n = p.n_owned
-    g = float(np.linalg.norm(gravity))
-    if g == 0.0:
-        return
     dim = len(gravity)
-    up = -np.asarray(gravity, float) / g
-    height = p["x"][:n] @ up
-    names = list(case.materials)
-    for i, b in enumerate(case.bodies):
-        mi = names.index(b.material)
-        if b.method != "mpm" or mtypes[mi] != TAIT_FLUID:
-            continue
-        mine = (p["body"][:n] == i) & (p["method"][:n] == 0)
-        top = float(height[mine].max()) if mine.any() else -np.inf
-        if dist is not None and dist.size > 1:
-            top = dist.max(top)
-        if not np.isfinite(top):
-            continue
+    mparams = materials[1]
+
+    def half_spacing(b, up):
         if b.spacing is not None:
-            top += 0.5 * float(np.abs(up) @ np.broadcast_to(np.asarray(b.spacing, float), dim))
-        else:
-            top += 0.5 * float(np.abs(up) @ (np.asarray(case.grid.cell_size, float) / b.ppc))
+            return 0.5 * float(np.abs(up) @ np.broadcast_to(np.asarray(b.spacing, float), dim))
+        return 0.5 * float(np.abs(up) @ (np.asarray(case.grid.cell_size, float) / b.ppc))
+
+    for mine, rho, mi in fluid_columns(case, p, materials, gravity, "mpm", half_spacing,
+                                       dist):
         kappa, gamma, rho0 = mparams[mi, 0], mparams[mi, 1], mparams[mi, 2]
-        s = rho0 * g * (top - height[mine]) / kappa
-        if gamma == 1.0:
-            rho = rho0 * np.exp(s)
-        else:
-            rho = rho0 * np.exp(np.log1p((gamma - 1.0) / gamma * s) / (gamma - 1.0))
         J = rho0 / rho
         rows = np.nonzero(mine)[0]
         D = p.deformation(n)

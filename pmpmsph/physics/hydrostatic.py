@@ -1,0 +1,52 @@
+"""The hydrostatic initial state of Tait fluid bodies, for SPH and MPM alike.
+
+Integrating dp/dz = rho(p) |g| with the Tait law rho = rho0 (1 + p/kappa)^(1/gamma) (seed 003,
+eq. 50) from p = 0 at the top gives, at depth z,
+    rho = rho0 (1 + (gamma - 1)/gamma rho0 |g| z/kappa)^(1/(gamma - 1)),
+and rho = rho0 exp(rho0 |g| z/kappa) for gamma = 1 (the limit). The top is a body's highest
+particle plus half a spacing (a flat surface). Without it a column seeded at rho0 drops by its
+compression and rings (cases/sph_hydrostatic.toml).
+"""
+import numpy as np
+
+from ..materials.codes import TAIT_FLUID
+
+
+def tait_hydrostatic_density(rho0, kappa, gamma, g, depth):
+    """rho at `depth` below the surface (module doc)."""
+    s = rho0 * g * depth / kappa
+    if gamma == 1.0:
+        return rho0 * np.exp(s)
+    return rho0 * np.exp(np.log1p((gamma - 1.0) / gamma * s) / (gamma - 1.0))
+
+
+def fluid_columns(case, particles, materials, gravity, method, half_spacing, dist=None):
+    """For every Tait body of `method` ("sph" or "mpm", walls left out): (its owned rows as a
+    mask, their hydrostatic density, the material's row). `half_spacing(body, up)` is half
+    the body's particle spacing along the upward direction. Collective when `dist` spans
+    several ranks (the top is a global maximum); nothing without gravity."""
+    from ..build import METHOD_CODES
+
+    mtypes, mparams = materials
+    p = particles
+    n = p.n_owned
+    gravity = np.asarray(gravity, float)
+    g = float(np.linalg.norm(gravity))
+    if g == 0.0:
+        return
+    up = -gravity / g
+    height = p["x"][:n] @ up
+    names = list(case.materials)
+    for i, b in enumerate(case.bodies):
+        mi = names.index(b.material)
+        if b.wall or b.method != method or mtypes[mi] != TAIT_FLUID:
+            continue
+        mine = (p["body"][:n] == i) & (p["method"][:n] == METHOD_CODES[method])
+        top = float(height[mine].max()) if mine.any() else -np.inf
+        if dist is not None and dist.size > 1:
+            top = dist.max(top)
+        if not np.isfinite(top):
+            continue
+        top += half_spacing(b, up)
+        kappa, gamma, rho0 = mparams[mi, 0], mparams[mi, 1], mparams[mi, 2]
+        yield mine, tait_hydrostatic_density(rho0, kappa, gamma, g, top - height[mine]), mi
