@@ -166,7 +166,8 @@ class Simulation(Restart, Rebalancing):
     # -- output ------------------------------------------------------------------------------
     def _open_output(self, overwrite):
         from .io.diagnostics import DiagnosticsCSV
-        from .io.snapshots import SnapshotWriter, code_version
+        from .io.h5files import code_version
+        from .io.snapshots import SnapshotWriter
 
         os.makedirs(self.out_dir, exist_ok=True) if self.dist.is_root else None
         self.dist.barrier()

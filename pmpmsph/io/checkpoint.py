@@ -37,7 +37,7 @@ import uuid
 import h5py
 import numpy as np
 
-from .snapshots import LIBVER, _write_slice, code_version, open_h5
+from .h5files import LIBVER, code_version, open_h5, write_slice
 
 FORMAT = "pmpmsph-checkpoint-1"
 GROUP = "particles"
@@ -154,7 +154,7 @@ def write_checkpoint(dist, path, fields, attrs, mode="auto"):
                     dset = grp.create_dataset(name, shape=(n_total,) + arr.shape[1:],
                                               dtype=arr.dtype)
                     if n_total > 0:
-                        _write_slice(dset, offset, arr, collective=True)
+                        write_slice(dset, offset, arr, collective=True)
 
         _everywhere(dist, write_mpio, "writing collectively")
     elif mode == "serial":

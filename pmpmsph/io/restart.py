@@ -173,7 +173,8 @@ class Restart:
         diagnostics.csv in `out_dir` if present (snapshots after the restart step and rows
         from it on are dropped first), start new files otherwise (or with `overwrite`)."""
         from .diagnostics import DIAG_COLUMNS, DiagnosticsCSV, truncate_rows
-        from .snapshots import SnapshotWriter, code_version
+        from .h5files import code_version
+        from .snapshots import SnapshotWriter
 
         self.out_dir = out_dir
         h5 = os.path.join(out_dir, "particles.h5")

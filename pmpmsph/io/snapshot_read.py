@@ -5,7 +5,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from .snapshots import GROUP, SYM_ATTR, SYM_ORDER, open_h5
+from .h5files import open_h5
+from .snapshots import GROUP, SYM_ATTR, SYM_ORDER
 
 SnapshotInfo = namedtuple("SnapshotInfo", "index name step time n_total")
 

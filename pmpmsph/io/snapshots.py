@@ -50,13 +50,14 @@ disk: a reader (ParaView, ``io.snapshot_read.read_snapshot``) can open it while 
 crash. HDF5 file locking is switched off for the same reason (a viewer holding the file
 must not stop the run). After each snapshot rank 0 rewrites the XDMF sidecar ``RUN.xdmf``.
 """
-import glob
 import logging
 import os
-import re
 
 import h5py
 import numpy as np
+
+from .h5files import (LIBVER, code_version, connectivity_dtype, open_h5, rank_file,
+                      rank_files_present, snapshot_name, write_slice, xdmf_path_for)
 
 log = logging.getLogger("pmpmsph")
 
@@ -68,54 +69,7 @@ PRECISIONS = {"single": np.float32, "double": np.float64}
 #: components of a symmetric tensor as stored (the XDMF Tensor6 order), as (row, column)
 SYM_ORDER = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
 SYM_ATTR = "xx xy xz yy yz zz"
-# Dense attribute storage (the 1.8 file format) so large attributes (a long case text, the
-# counts of many ranks) do not hit the 64 KiB object-header limit.
-LIBVER = ("v108", "latest")
 
-
-
-def code_version():
-    """Installed pmpmsph version (or 'unknown' when running from an uninstalled tree)."""
-    try:
-        from importlib.metadata import version
-
-        return version("pmpmsph")
-    except Exception:  # noqa: BLE001 - any failure just means "not installed"
-        import pmpmsph
-
-        return getattr(pmpmsph, "__version__", "unknown")
-
-
-def snapshot_name(index):
-    return f"{int(index):06d}"
-
-
-def rank_file(path, rank):
-    """Per-rank file of ``path`` (``RUN.h5`` -> ``RUN.r3.h5``), in the same directory."""
-    path = os.fspath(path)
-    stem, _ = os.path.splitext(os.path.basename(path))
-    return os.path.join(os.path.dirname(path), f"{stem}.r{rank}.h5")
-
-
-def _rank_files_present(path):
-    path = os.fspath(path)
-    stem, _ = os.path.splitext(os.path.basename(path))
-    pattern = re.compile(re.escape(stem) + r"\.r\d+\.h5$")
-    folder = os.path.dirname(path) or "."
-    return [p for p in glob.glob(os.path.join(glob.escape(folder), f"{glob.escape(stem)}.r*.h5"))
-            if pattern.search(os.path.basename(p))]
-
-
-def xdmf_path_for(path):
-    return os.path.splitext(os.fspath(path))[0] + ".xdmf"
-
-
-def open_h5(path, mode, **kw):
-    """h5py.File without HDF5 file locking (readers and the writer must not block each other)."""
-    try:
-        return h5py.File(path, mode, locking=False, **kw)
-    except (TypeError, ValueError):  # h5py/HDF5 too old for the locking switch
-        return h5py.File(path, mode, **kw)
 
 
 def _storage_array(name, arr, float_dtype=None, symmetric=False):
@@ -171,7 +125,7 @@ class SnapshotWriter:
         # Existing output: decided on rank 0, the same answer on every rank.
         exists = None
         if dist.is_root:
-            exists = os.path.exists(self.path) or bool(_rank_files_present(self.path))
+            exists = os.path.exists(self.path) or bool(rank_files_present(self.path))
         exists = dist.bcast(exists)
         self.appending = bool(append and exists and dist.bcast(os.path.exists(self.path)))
         #: step of the last snapshot kept when appending (None: none kept / a new file)
@@ -212,7 +166,7 @@ class SnapshotWriter:
 
     def _create_main(self, exists, case_text, attrs):
         if exists:
-            for p in [self.path, self.xdmf_path] + _rank_files_present(self.path):
+            for p in [self.path, self.xdmf_path] + rank_files_present(self.path):
                 if os.path.exists(p):
                     os.remove(p)
         os.makedirs(os.path.dirname(self.path), exist_ok=True)
@@ -363,13 +317,13 @@ class SnapshotWriter:
                 dset = grp.create_dataset(key, shape=(n_total,) + arr.shape[1:], dtype=arr.dtype)
                 self._mark(dset, key)
                 if n_total > 0:  # a dataset of size 0 has no storage to write to (all agree)
-                    _write_slice(dset, offset, arr, collective=True)
+                    write_slice(dset, offset, arr, collective=True)
             key = str(n_total)
             if self.xdmf and n_total > 0 and key not in f[TOPOLOGY]:  # same answer on all ranks
                 dtype = connectivity_dtype(n_total)
                 dset = f[TOPOLOGY].create_dataset(key, shape=(n_total,), dtype=dtype)
                 n = len(next(iter(arrays.values())))
-                _write_slice(dset, offset, np.arange(offset, offset + n, dtype=dtype),
+                write_slice(dset, offset, np.arange(offset, offset + n, dtype=dtype),
                              collective=True)
             # No f.flush(): with the mpio driver it is an MPI_File_sync, an fsync that waits
             # for the disk (0.03-0.4 s per snapshot measured here); closing writes the
@@ -439,33 +393,3 @@ def _new_group(f, name):
     if name in f[GROUP]:
         del f[GROUP][name]
     return f[GROUP].create_group(name, track_order=True)
-
-
-def connectivity_dtype(n_total):
-    return np.int32 if n_total < 2**31 else np.int64
-
-
-def _write_slice(dset, offset, arr, collective):
-    """Write arr into rows [offset, offset + n) with one H5Dwrite, even when n == 0.
-
-    h5py's ``dset[a:b] = ...`` skips the H5Dwrite call for an empty selection, which would
-    leave the other ranks waiting in a collective write; here a rank that owns nothing
-    takes part with an empty selection.
-    """
-    n = arr.shape[0]
-    trailing = arr.shape[1:]
-    fspace = dset.id.get_space()
-    if n > 0:
-        fspace.select_hyperslab((offset,) + (0,) * len(trailing), (n,) + trailing)
-        buf = np.ascontiguousarray(arr, dtype=dset.dtype)
-        mspace = h5py.h5s.create_simple(buf.shape)
-    else:
-        fspace.select_none()
-        buf = np.zeros((1,) + trailing, dtype=dset.dtype)
-        mspace = h5py.h5s.create_simple(buf.shape)
-        mspace.select_none()
-    dxpl = None
-    if collective:
-        dxpl = h5py.h5p.create(h5py.h5p.DATASET_XFER)
-        dxpl.set_dxpl_mpio(h5py.h5fd.MPIO_COLLECTIVE)
-    dset.id.write(mspace, fspace, buf, dxpl=dxpl)

@@ -28,7 +28,8 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from .snapshots import GROUP, TOPOLOGY, open_h5, xdmf_path_for
+from .h5files import open_h5, xdmf_path_for
+from .snapshots import GROUP, TOPOLOGY
 
 log = logging.getLogger("pmpmsph")
 _warned = set()

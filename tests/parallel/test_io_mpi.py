@@ -12,7 +12,7 @@ import pytest
 
 from pmpmsph.io import (DiagnosticsCSV, SnapshotWriter, list_snapshots, read_attrs,
                         read_diagnostics, read_snapshot)
-from pmpmsph.io.snapshots import rank_file
+from pmpmsph.io.h5files import rank_file
 from pmpmsph.parallel.distributor import Distributor
 
 pytestmark = [pytest.mark.mpi, pytest.mark.timeout(120)]

@@ -9,7 +9,7 @@ import pytest
 from pmpmsph import ConfigError, load_case_text
 from pmpmsph.io import (DiagnosticsCSV, SnapshotWriter, list_snapshots, read_attrs,
                         read_diagnostics, read_snapshot, rebuild_xdmf_main, write_xdmf)
-from pmpmsph.io.snapshots import rank_file
+from pmpmsph.io.h5files import rank_file
 from pmpmsph.parallel.distributor import Distributor
 
 TIMES = [0.0, 0.125, 1.0 / 3.0]
