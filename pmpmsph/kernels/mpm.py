@@ -82,7 +82,7 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
         # terms N a (mass; momentum unless folded) and force-like terms
         # N b - (vol sigma) . grad N (the force, or the folded momentum p + dt f), built up
         # one axis at a time, so a node costs a few multiply-adds instead of forming N and
-        # grad N and the stress product anew (~15% of the step in 2D, more in 3D).
+        # grad N and the stress product anew (with G2P's: 5 % of the 2D step, 40 % in 3D).
         a0, a1, a2 = (fe0, fe1, fe2) if force_dt is None else (mv0, mv1, mv2)
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
@@ -139,6 +139,7 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
                             if gmx is not None:
                                 for a in range(dim):
                                     gmx[fld, node, a] += N * m * x[p, a]
+
 
 MOMENTUM, WITH_FORCE, FOLDED = 0, 1, 2
 
