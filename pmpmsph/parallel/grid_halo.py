@@ -36,19 +36,21 @@ class GridHalo:
         self.axis = decomposition.axis
         off = int(grid.offset[self.axis])
         self.bytes_sent = 0
-        self._buffers = {}  # (direction, shapes) -> [(sendbuf, recvbuf)] per plan entry
-        self.plan = []  # (neighbour, ghost slice, shared slice) in local node indices
-        self.both = []  # (neighbour, slice of all nodes shared with it) for `sum`
+        self._buffers = {}  # (route name, shapes) -> [(sendbuf, recvbuf)] per neighbour
+        # (neighbour, slice sent, slice received) of each exchange, in local node indices,
+        # made once: reduce sends the ghosts to their owner, broadcast the owned shared
+        # nodes back, sum sends and receives every node shared with the neighbour
+        self.routes = {"reduce": [], "broadcast": [], "sum": []}
         for nb in (decomposition.left, decomposition.right):
             if nb is None:
                 continue
             (g_lo, g_hi), (s_lo, s_hi) = decomposition.overlap(nb)
-            self.plan.append((nb, slice(g_lo - off, g_hi - off), slice(s_lo - off, s_hi - off)))
-            self.both.append((nb, slice(min(g_lo, s_lo) - off, max(g_hi, s_hi) - off)))
-        # (neighbour, slice sent, slice received) of each exchange, made once
-        self.routes = {"reduce": [(nb, g, sh) for nb, g, sh in self.plan],
-                       "broadcast": [(nb, sh, g) for nb, g, sh in self.plan],
-                       "sum": [(nb, sl, sl) for nb, sl in self.both]}
+            ghost = slice(g_lo - off, g_hi - off)
+            shared = slice(s_lo - off, s_hi - off)
+            both = slice(min(g_lo, s_lo) - off, max(g_hi, s_hi) - off)
+            self.routes["reduce"].append((nb, ghost, shared))
+            self.routes["broadcast"].append((nb, shared, ghost))
+            self.routes["sum"].append((nb, both, both))
         faces, ghost = decomposition.faces, decomposition.ghost
         # no node is local to three ranks: the two ghost layers of an interior slab's
         # neighbours stay apart (decided from the faces, so every rank decides alike)

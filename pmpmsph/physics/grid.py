@@ -60,7 +60,7 @@ class Grid:
         self.dv = np.zeros((nf, nn, d))
         self.mgrad = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
         self.mx = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
-        self._span = (0, 0)  # the last `work_range` (all arrays are zero outside it)
+        self._reached = (0, 0)  # the layers the last `work_range` call's rows reach
         #: the domain and the band around it in which particles may be (one cell outside)
         self.lo = self.global_origin - self.dx
         self.hi = np.array(spec.upper) + self.dx
@@ -102,7 +102,7 @@ class Grid:
         lo, hi = max(lo, 0), min(hi, layers)
         stride = int(self.strides[0])
         new = (lo * stride, hi * stride) if lo < hi else (0, 0)
-        old, self._span = self._span, new
+        old, self._reached = self._reached, new
         if old[0] == old[1]:
             return new
         if new[0] == new[1]:
