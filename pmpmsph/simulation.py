@@ -87,7 +87,7 @@ class Simulation(Restart, Rebalancing):
         if self.sph is not None and case.sph.hydrostatic:  # initial condition (collective)
             self.sph.hydrostatic_start()
             if self.mpm is not None:  # and the MPM fluids of a coupled scene
-                from .physics.sph_solid import hydrostatic_mpm
+                from .physics.hydrostatic import hydrostatic_mpm
 
                 hydrostatic_mpm(case, self.particles, self.materials, case.gravity,
                                 self.dist)

@@ -10,6 +10,7 @@ compression and rings (cases/sph_hydrostatic.toml).
 import numpy as np
 
 from ..materials.codes import TAIT_FLUID
+from ..materials.fluid import tait_pressure
 
 
 def tait_hydrostatic_density(rho0, kappa, gamma, g, depth):
@@ -50,3 +51,40 @@ def fluid_columns(case, particles, materials, gravity, method, half_spacing, dis
         top += half_spacing(b, up)
         kappa, gamma, rho0 = mparams[mi, 0], mparams[mi, 1], mparams[mi, 2]
         yield mine, tait_hydrostatic_density(rho0, kappa, gamma, g, top - height[mine]), mi
+
+
+def hydrostatic_mpm(case, particles, materials, gravity, dist=None):
+    """MPM fluid (Tait) bodies at rest in the hydrostatic state below their top, as
+    `SPHStage.hydrostatic_start` does for SPH ones (`fluid_columns`): J = rho0/rho
+    (F = diag(J, 1, 1): the Tait stress depends on J alone), vol = J vol0, sigma = -p I with
+    the Tait pressure p = kappa (J^-gamma - 1) (`materials.fluid.tait_pressure`). The top
+    is the body's highest point plus half its spacing. Collective when parallel (the top is
+    a global maximum)."""
+    p = particles
+    n = p.n_owned
+    dim = len(gravity)
+    mparams = materials[1]
+
+    def half_spacing(b, up):
+        if b.spacing is not None:
+            return 0.5 * float(np.abs(up) @ np.broadcast_to(np.asarray(b.spacing, float), dim))
+        return 0.5 * float(np.abs(up) @ (np.asarray(case.grid.cell_size, float) / b.ppc))
+
+    for mine, rho, mi in fluid_columns(case, p, materials, gravity, "mpm", half_spacing,
+                                       dist):
+        kappa, gamma, rho0 = mparams[mi, 0], mparams[mi, 1], mparams[mi, 2]
+        J = rho0 / rho
+        rows = np.nonzero(mine)[0]
+        D = p.deformation(n)
+        if D.ndim == 1:
+            D[rows] = J
+        else:
+            D[rows] = np.eye(3)
+            D[rows, 0, 0] = J
+        p["vol"][rows] = J * p["vol0"][rows]
+        if "rho" in p:
+            p["rho"][rows] = rho
+        pressure = tait_pressure(J - 1.0, kappa, gamma)
+        p["sigma"][rows] = 0.0
+        for a in range(3):
+            p["sigma"][rows, a, a] = -pressure

@@ -31,9 +31,9 @@ The rule, automatic in a coupled scene; (2) needs one velocity field per body
      (kernels/contact.py) removes the approach of the fluid's field towards it, so the
      solid's motion compresses the fluid on the grid as it would a fluid MPM body; the change
      dv_c the contact made to the solid's field is gathered back to its SPH particles,
-     v_p += sum_I N_I dv_c,I (kernels/coupling.py, `gather_increment`), so the fluid's loss of momentum is
-     exactly the solid's gain (sum_p N_Ip m_p = m_I). The fluid's field holds the fluid
-     only: the two never mix velocities on the grid. The contact acts where the two
+     v_p += sum_I N_I dv_c,I (kernels/coupling.py, `gather_increment`), so the fluid's loss
+     of momentum is exactly the solid's gain (sum_p N_Ip m_p = m_I). The fluid's field holds
+     the fluid only: the two never mix velocities on the grid. The contact acts where the two
      fields' nodal centres of mass are closer than 1.5 times their separation when the
      bodies touch (`[mpm] contact_gap = 1.5`, the case's): at the default 1 (Nairn's check)
      it acts only once the lattices overlap, and the water row below the block closed in on
@@ -49,7 +49,7 @@ The rule, automatic in a coupled scene; (2) needs one velocity field per body
      points inside its lattice by t = 1.8 s (contact_gap 1). (Started at rho0, without (3),
      it runs to the end with or without (2): drafts 0.108 and 0.107 at t = 1.8 s, -5 %.)
   3. Initial state. With `[sph] hydrostatic = true` the MPM fluid bodies start hydrostatic
-     as the SPH ones (`hydrostatic_mpm`): J = rho0/rho(z), volume, density and pressure
+     as the SPH ones (physics/hydrostatic.py): J = rho0/rho(z), volume, density and pressure
      (the water of scene 7, kappa = 2e3, is 11 % denser at its floor than at its surface:
      seeded at rho0 it falls by its compression first).
 Still open: the approach to equilibrium is slow. PIC (`mpm.flip = 0`, the case's) slows
@@ -63,9 +63,6 @@ and goes on sinking (0.1152 at t = 1.8 s), flip = 0.99 0.1193 (+5 %), flip = 1 r
 t = 2.7 s and sinks on (0.1143 at t = 3), flip = 0.99 reaches it at t = 1.8 s and bobs about
 it (0.1132-0.1138 over t = 1.8-3 s) while the water closes in to 0.49 spacing.
 """
-import numpy as np
-
-from .hydrostatic import fluid_columns
 
 
 def solid_force(p, lo, hi, gravity):
@@ -73,39 +70,3 @@ def solid_force(p, lo, hi, gravity):
     their field, whose grid solve adds m g back (their stress is inside `a`)."""
     dim = len(gravity)
     p["fext"][lo:hi] = p["mass"][lo:hi, None] * (p["acc"][lo:hi, :dim] - gravity[None, :])
-
-
-def hydrostatic_mpm(case, particles, materials, gravity, dist=None):
-    """MPM fluid (Tait) bodies at rest in the hydrostatic state below their top, as
-    `SPHStage.hydrostatic_start` does for SPH ones (physics/hydrostatic.py): J = rho0/rho
-    (F = diag(J, 1, 1): the Tait stress depends on J alone), vol = J vol0, sigma = -p I with
-    p = kappa (J^-gamma - 1). The top is the body's highest point plus half its spacing.
-    Collective when parallel (the top is a global maximum)."""
-    p = particles
-    n = p.n_owned
-    dim = len(gravity)
-    mparams = materials[1]
-
-    def half_spacing(b, up):
-        if b.spacing is not None:
-            return 0.5 * float(np.abs(up) @ np.broadcast_to(np.asarray(b.spacing, float), dim))
-        return 0.5 * float(np.abs(up) @ (np.asarray(case.grid.cell_size, float) / b.ppc))
-
-    for mine, rho, mi in fluid_columns(case, p, materials, gravity, "mpm", half_spacing,
-                                       dist):
-        kappa, gamma, rho0 = mparams[mi, 0], mparams[mi, 1], mparams[mi, 2]
-        J = rho0 / rho
-        rows = np.nonzero(mine)[0]
-        D = p.deformation(n)
-        if D.ndim == 1:
-            D[rows] = J
-        else:
-            D[rows] = np.eye(3)
-            D[rows, 0, 0] = J
-        p["vol"][rows] = J * p["vol0"][rows]
-        if "rho" in p:
-            p["rho"][rows] = rho
-        pressure = kappa * (J ** -gamma - 1.0)
-        p["sigma"][rows] = 0.0
-        for a in range(3):
-            p["sigma"][rows, a, a] = -pressure
