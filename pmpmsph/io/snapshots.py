@@ -19,9 +19,9 @@ the 3x3 matrix of particle i (the XDMF sidecar declares them as ``Tensor`` with 
 ``N 3 3``, which ParaView/VTK read as 9-component arrays). Fields named in ``symmetric`` are
 stored as their 6 independent components (n_total, 6) in the XDMF ``Tensor6`` order xx, xy,
 xz, yy, yz, zz, with the dataset attribute ``symmetric`` naming that order;
-:func:`pmpmsph.io.snapshot_read.read_snapshot` expands them to (n, 3, 3), and so does VTK's XDMF2 reader, but
-ParaView's XDMF3 reader shows the 6 raw components under VTK's labels (xx, yy, zz, xy, yz,
-xz), so a run stores its stress in full. Boolean fields are stored as uint8.
+:func:`pmpmsph.io.snapshot_read.read_snapshot` expands them to (n, 3, 3), and so does VTK's
+XDMF2 reader, but ParaView's XDMF3 reader shows the 6 raw components under VTK's labels (xx,
+yy, zz, xy, yz, xz), so a run stores its stress in full. Boolean fields are stored as uint8.
 
 ``precision``: ``"single"`` stores every float field as float32 (half the bytes: what a
 viewer needs, and the disk is the cost of a snapshot), ``"double"`` as float64, None (the
@@ -46,9 +46,10 @@ dropped, the numbering goes on, and the root ``layout`` becomes ``mixed`` if the
 writes differently (per-rank parts of earlier snapshots are kept and still referenced).
 
 The file is opened for each snapshot and closed again, so between writes it is complete on
-disk: a reader (ParaView, ``io.snapshot_read.read_snapshot``) can open it while the run goes on or after a
-crash. HDF5 file locking is switched off for the same reason (a viewer holding the file
-must not stop the run). After each snapshot rank 0 rewrites the XDMF sidecar ``RUN.xdmf``.
+disk: a reader (ParaView, ``io.snapshot_read.read_snapshot``) can open it while the run
+goes on or after a crash. HDF5 file locking is switched off for the same reason (a viewer
+holding the file must not stop the run). After each snapshot rank 0 rewrites the XDMF sidecar
+``RUN.xdmf``.
 """
 import logging
 import os

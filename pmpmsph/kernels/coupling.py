@@ -6,14 +6,15 @@ contact made to the velocity field of each particle's body, interpolated as G2P 
 sum_p N_I m_p = m_I (the P2G of these rows) the particles receive exactly the momentum
 sum_I m_I dv_I that the contact took from the other fields.
 
-`grid_force_kick` (the conservative MPM-SPH interface, `physics.coupling`): the SPH particles of the transition zone take part in P2G with their
-mass and momentum, so the grid velocity v_I = sum_q N_Iq m_q v_q / m_I from which an MPM
-point's strain rate L_p = sum_I v_I (x) grad N_Ip is measured depends on their velocities
-too. The force that is the adjoint of that dependence (the one whose work is the MPM
-stress power) gives every P2G particle q its share m_q N_Iq / m_I of each node's force f_I
-(thesis, seed 003, eq. 65): dv_q = dt sum_I N_Iq f_I / m_I. G2P gives it to the MPM points
-(inside dv, with gravity and damping); this gives it to the transition SPH particles, which
-get gravity and damping from their own SPH rates.
+`grid_force_kick` (the conservative MPM-SPH interface, `physics.coupling`): the SPH
+particles of the transition zone take part in P2G with their mass and momentum, so the grid
+velocity v_I = sum_q N_Iq m_q v_q / m_I from which an MPM point's strain rate L_p = sum_I
+v_I (x) grad N_Ip is measured depends on their velocities too. The force that is the adjoint
+of that dependence (the one whose work is the MPM stress power) gives every P2G particle q
+its share m_q N_Iq / m_I of each node's force f_I (thesis, seed 003, eq. 65): dv_q = dt
+sum_I N_Iq f_I / m_I. G2P gives it to the MPM points (inside dv, with gravity and damping);
+this gives it to the transition SPH particles, which get gravity and damping from their own
+SPH rates.
 """
 import numpy as np
 

@@ -74,8 +74,9 @@ of eq. 8: ``sum_a v_a . f_a = -sum_a V0_a P_a : dF_a/dt`` (the ``-u_a`` term of 
 out since ``sum_b V0_b G0_ab = 0``), so eq. 8 with it conserves energy exactly.
 
 The finite-difference gradient of eq. 4 that the tests check `kernel_correction` against is
-tests/unit/tlsph_reference.py; `update_F_exp` is eq. 9 with a scaling-and-squaring Taylor exponential (`expm3`); `energies`
-is eq. 7 with psi from the material dispatch (per unit reference volume).
+tests/unit/tlsph_reference.py; `update_F_exp` is eq. 9 with a scaling-and-squaring Taylor
+exponential (`expm3`); `energies` is eq. 7 with psi from the material dispatch (per unit
+reference volume).
 """
 import numpy as np
 
@@ -84,8 +85,8 @@ from ..materials.dispatch import compute_stress, strain_energy
 from ..materials.tensor import block_inverse, cofactor3, det3
 from .sph_kernels import kernel_dwdr, kernel_w
 
-__all__ = ["kernel_correction", "velocity_gradient", "deformation_gradient", "internal_force", "first_piola",
-           "expm3", "update_F_exp", "material_stress", "current_volume", "energies"]
+__all__ = ["kernel_correction", "velocity_gradient", "deformation_gradient", "internal_force",
+           "first_piola", "expm3", "update_F_exp", "material_stress", "current_volume", "energies"]
 
 #: M (eq. 2) is treated as singular when det(M) < DEGENERATE * (tr M / dim)^dim
 DEGENERATE = 1e-10
