@@ -26,6 +26,7 @@ def compile_kernels(sim):
     sim.timers.total.update(before)  # the dry step's phases are not run time
     sim.timers.add("jit_warmup", time.perf_counter() - t0)
 
+
 def _dry_step(sim):
     p = sim.particles
     n_owned, n_total = p.n_owned, p.n_total

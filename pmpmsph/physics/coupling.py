@@ -54,6 +54,7 @@ Two interfaces (`[coupling] interface`):
 import numpy as np
 
 from ..jit import njit
+from .scratch import rows_at_least
 from .sph_solid import solid_force
 
 MPM = 0
@@ -195,8 +196,7 @@ class Coupling:
         p.drop_halo()
         if self.handover:
             self._hand_over()
-        if len(self.key) < n:
-            self.key = np.zeros(max(n, 2 * len(self.key)), np.int8)
+        self.key = rows_at_least(self.key, n)
         key = self.key[:n]
         g = self.mpm.grid
         shape = np.array(g.shape, np.int64)

@@ -24,6 +24,7 @@ from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
 from .grid import Grid
+from .scratch import rows_at_least
 from ..parallel.grid_halo import GridHalo
 from ..timing import Timers
 
@@ -70,6 +71,8 @@ class MPMStage:
         # mass and momentum but no stress, and take the grid force (`grid_force_kick`)
         self.n_p2g = self.n_g2p = self.n_stress = None
         self.signal = None  # max (c + |v|) after the last step, from G2P (see `step`)
+        self._dvc = np.zeros((0, 0, 0))  # scratch: `_contact_change`, `_zero_stress`
+        self._zeros = np.zeros((0, 3, 3))
         # only a CFL time step reads it (`Simulation.signal_speed`); a sqrt per particle else
         self.want_signal = case.time.cfl is not None
 
@@ -257,14 +260,13 @@ class MPMStage:
 
     def _contact_change(self):
         """A reused array shaped like the grid velocities, for the contact's change."""
-        if getattr(self, "_dvc", None) is None or self._dvc.shape != self.grid.vel.shape:
+        if self._dvc.shape != self.grid.vel.shape:
             self._dvc = np.zeros_like(self.grid.vel)
         return self._dvc
 
     def _zero_stress(self, n):
         """n rows of zero stress (reused) for the P2G rows that scatter none."""
-        if getattr(self, "_zeros", None) is None or len(self._zeros) < n:
-            self._zeros = np.zeros((max(n, 16), 3, 3))
+        self._zeros = rows_at_least(self._zeros, n)
         return self._zeros[:n]
 
     def _grid_force_kick(self, dt):

@@ -44,6 +44,7 @@ from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..kernels.sph_walls import wall_state
 from ..particles import FieldSpec
 from .hydrostatic import fluid_columns
+from .scratch import rows_at_least
 from ..timing import Timers
 
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
@@ -185,8 +186,7 @@ class SPHStage:
             return
         p = self.p
         n = p.n_owned
-        if len(self._M) < n:
-            self._M = np.zeros((max(n, 2 * len(self._M)), 3, 3))
+        self._M = rows_at_least(self._M, n)
         with self.timers.phase("sph"):
             correction_matrices(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
                                 p.with_halo("mass"), p.with_halo("rho"),
@@ -203,8 +203,7 @@ class SPHStage:
             return
         p = self.p
         n = p.n_owned
-        if len(self._A) < n:
-            self._A = np.zeros((max(n, 2 * len(self._A)), 3, 3))
+        self._A = rows_at_least(self._A, n)
         with self.timers.phase("sph"):
             hourglass_fit(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                           p.with_halo("X0"), p.with_halo("mass"), p.with_halo("rho"),
