@@ -15,8 +15,20 @@ from .errors import EXIT_CONFIG, EXIT_RUNTIME, ConfigError, RunError, RunStopped
 log = logging.getLogger("pmpmsph")
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports a bad option as bad input (one line naming the option, exit 2
+    on every rank) instead of printing its usage on each rank and exiting."""
+
+    def error(self, message):
+        option, sep, reason = message.partition(": ")
+        if not (sep and option.startswith("argument ")):
+            raise ConfigError("<command line>", message)
+        names = option[len("argument "):].split("/")
+        raise ConfigError(max(names, key=len), reason)
+
+
 def _parser():
-    p = argparse.ArgumentParser(prog="python -m pmpmsph",
+    p = _Parser(prog="python -m pmpmsph",
                                 description="Coupled MPM-SPH solver. Commands: run (default), "
                                 "check, xdmf RUN.h5, vtu RUN, plot RUN.")
     p.add_argument("case", nargs="?", help="case file (TOML); with --restart optional (the "
@@ -36,12 +48,25 @@ def _parser():
     return p
 
 
-def _load(args):
+def _check_options(args):
+    """Values argparse accepts by type but the run cannot use."""
+    if args.max_steps is not None and args.max_steps < 0:
+        raise ConfigError("--max-steps", f"must be 0 or more, got {args.max_steps}")
+    if args.progress is not None and args.progress < 1:
+        raise ConfigError("--progress", f"must be 1 or more, got {args.progress}")
+
+
+def _load(args, dist):
+    """The case, read by every rank; bad input on any rank stops every rank."""
     from .config import load_case_file, parse_set
 
-    if args.case is None:
-        raise ConfigError("<case>", "give a case file (or --restart CHECKPOINT)")
-    return load_case_file(args.case, overrides=parse_set(args.set))
+    def load():
+        _check_options(args)
+        if args.case is None:
+            raise ConfigError("<case>", "give a case file (or --restart CHECKPOINT)")
+        return load_case_file(args.case, overrides=parse_set(args.set))
+
+    return dist.agree("case", load)
 
 
 def _load_for_restart(args, dist):
@@ -50,25 +75,27 @@ def _load_for_restart(args, dist):
     from .config import load_case_text, parse_set
     from .io.checkpoint import read_header
 
-    head, err = None, None
-    if dist.is_root:
+    def header():
         try:
-            head = read_header(args.restart)
-        except Exception as exc:  # noqa: BLE001 - bad input, reported below
-            err = f"cannot read checkpoint {args.restart}: {exc}"
-    head, err = dist.bcast((head, err))
-    if err:
-        raise ConfigError("--restart", err)
-    new = parse_set(args.set)
+            return read_header(args.restart)
+        except Exception as exc:  # noqa: BLE001 - bad input, whatever the reader raised
+            raise ConfigError("--restart", f"cannot read checkpoint {args.restart}: {exc}")
+
+    head = dist.agree("restart", header, root_only=True)
     if args.case is not None:
-        return _load(args), new
-    if not head.get("case"):
-        raise ConfigError("--restart", "the checkpoint holds no case text (a scene built in "
-                          "Python): give the case file as well")
-    overrides = list(head["case_overrides"]) + new
-    case = load_case_text(head["case"], name=head.get("case_name", "case"),
-                          overrides=overrides, base_dir=head.get("case_dir") or None)
-    return case, overrides
+        return _load(args, dist), parse_set(args.set)
+
+    def load():
+        _check_options(args)
+        if not head.get("case"):
+            raise ConfigError("--restart", "the checkpoint holds no case text (a scene built "
+                              "in Python): give the case file as well")
+        overrides = list(head["case_overrides"]) + parse_set(args.set)
+        return load_case_text(head["case"], name=head.get("case_name", "case"),
+                              overrides=overrides,
+                              base_dir=head.get("case_dir") or None), overrides
+
+    return dist.agree("case", load)
 
 
 def _memory_estimate(sim):
@@ -83,11 +110,11 @@ def _memory_estimate(sim):
 def cmd_check(args, dist):
     from .simulation import Simulation
 
-    case = _load(args)
-    sim = Simulation(case, dist=dist, write_output=False)
+    case = _load(args, dist)
+    sim = Simulation(case, dist=dist, write_output=False, max_steps=args.max_steps)
     n = dist.sum(sim.particles.n_owned)
     nodes = sim.mpm.grid.n_nodes if sim.mpm else 0
-    steps = int(round(case.time.end / sim.dt))
+    steps = int(round(sim.steps_to_end()))
     limit = sim.stable_dt()  # collective (global max of the signal speed): on every rank
     if dist.is_root:
         print(f"case       {case.name} ({case.dim}D)")
@@ -109,11 +136,13 @@ def cmd_run(args, dist):
         case, overrides = _load_for_restart(args, dist)
         default_out = os.path.dirname(os.path.abspath(args.restart))
     else:
-        case, overrides = _load(args), parse_set(args.set)
-        default_out = os.path.join("output", case.name)
+        case, overrides = _load(args, dist), parse_set(args.set)
+        default_out = os.path.join(case.output.folder, case.name)
     out = None if args.no_output else (args.out or default_out)
     sim = Simulation(case, dist=dist, out_dir=None if args.restart else out,
-                     overwrite=args.overwrite)
+                     overwrite=args.overwrite,
+                     out_key="--out" if args.out or args.restart else "output.folder",
+                     max_steps=args.max_steps)
     sim.case_overrides = tuple(overrides)
     sim.case_dir = os.path.dirname(os.path.abspath(args.case)) if args.case else None
     if args.restart:
@@ -123,8 +152,9 @@ def cmd_run(args, dist):
         if out:
             appended = sim.open_restart_output(out, overwrite=args.overwrite)
             log.info("restart output %s %s", "continues" if appended else "starts in", out)
+        sim.check_step_count(args.max_steps)  # from the restored time on
     n = dist.sum(sim.particles.n_owned)
-    est = int(round(max(case.time.end - sim.time, 0.0) / sim.dt))
+    est = int(round(sim.steps_to_end()))
     if args.max_steps is not None:
         est = min(est, args.max_steps)
     every = args.progress or max(est // 20, 1)
@@ -177,16 +207,12 @@ def main(argv=None):
     if argv and argv[0] in ("run", "check"):
         command = cmd_check if argv[0] == "check" else cmd_run
         argv = argv[1:]
-    args = _parser().parse_args(argv)
     try:
+        args = _parser().parse_args(argv)
         return command(args, dist)
     except ConfigError as exc:
         if dist.is_root:
             print(f"error: {exc}", file=sys.stderr)
-        return EXIT_CONFIG
-    except FileExistsError as exc:
-        if dist.is_root:
-            print(f"error: invalid input at '--out': {exc} (pass --overwrite)", file=sys.stderr)
         return EXIT_CONFIG
     except RunError as exc:
         if dist.is_root:

@@ -42,7 +42,10 @@ def _hms(seconds):
 
 
 class Simulation(Restart, Rebalancing):
-    def __init__(self, case, dist=None, out_dir=None, overwrite=False, write_output=True):
+    def __init__(self, case, dist=None, out_dir=None, overwrite=False, write_output=True,
+                 out_key="--out", max_steps=None):
+        """`out_key` names the setting that chose `out_dir` in messages about it;
+        `max_steps` is the bound the caller will run with (`check_step_count`)."""
         t0 = time.perf_counter()
         self.case = case
         self.dist = dist or Distributor()
@@ -50,26 +53,15 @@ class Simulation(Restart, Rebalancing):
         self.time = 0.0
         self.step_count = 0
         self.dim = case.dim
-        self.decomposition = self._decompose(case)
-        self.balancer = (LoadBalancer(case.parallel.balance_every,
-                                      case.parallel.balance_threshold)
-                         if self.decomposition is not None and self.dist.size > 1
-                         and case.parallel.balance_every > 0 else None)
-        self.particles = build_particles(
-            case, keep=self.decomposition.keep if self.decomposition else None)
-        self.materials = material_arrays(case)
-        self.gravity = np.zeros(3)
-        self.gravity[: self.dim] = case.gravity
-        self.mpm = (MPMStage(case, self.particles, self.materials, self.decomposition,
-                             self.timers) if case.has_mpm else None)
-        self.sph = (sph_stage_class(case)(case, self.particles, self.materials,
-                                          self.decomposition, self.dist, self.timers)
-                    if case.has_sph else None)
-        self.coupling = None
-        if case.coupled:
-            from .physics.coupling import Coupling
+        self.out_dir = out_dir
+        self.out_key = out_key
+        if write_output and out_dir is not None:  # before the work of building, and agreed
+            from .io.folders import check_output_folder
 
-            self.coupling = Coupling(case, self.particles, self.mpm, self.sph)
+            self.dist.agree("output location", lambda: check_output_folder(
+                out_dir, overwrite, out_key), root_only=True)
+        # seeding and the stages are local work on every rank: agreed on before any collective
+        self.dist.agree("build", lambda: self._build(case))
         self.migrated = 0
         self.migration = MigrationSchedule(self.dist, lazy=self.sph is None)
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
@@ -94,7 +86,7 @@ class Simulation(Restart, Rebalancing):
         self.h = min(min(case.grid.cell_size) if case.grid else np.inf,
                      case.sph.h if case.sph else np.inf)
         self.dt = self._initial_dt()
-        self.out_dir = out_dir
+        self.check_step_count(max_steps)
         self.writer = self.diag = None
         self._last_snapshot_step = -1
         fault = os.environ.get("PMPMSPH_INJECT_FAULT")  # "rank:step", for the fault tests
@@ -105,6 +97,29 @@ class Simulation(Restart, Rebalancing):
         if write_output and out_dir is not None:
             self._open_output(overwrite)
         self.timers.add("setup", time.perf_counter() - t0 - self.timers.total["jit_warmup"])
+
+    def _build(self, case):
+        """Slabs, this rank's particles and the stages the scene needs (no collective)."""
+        self.decomposition = self._decompose(case)
+        self.balancer = (LoadBalancer(case.parallel.balance_every,
+                                      case.parallel.balance_threshold)
+                         if self.decomposition is not None and self.dist.size > 1
+                         and case.parallel.balance_every > 0 else None)
+        self.particles = build_particles(
+            case, keep=self.decomposition.keep if self.decomposition else None)
+        self.materials = material_arrays(case)
+        self.gravity = np.zeros(3)
+        self.gravity[: self.dim] = case.gravity
+        self.mpm = (MPMStage(case, self.particles, self.materials, self.decomposition,
+                             self.timers) if case.has_mpm else None)
+        self.sph = (sph_stage_class(case)(case, self.particles, self.materials,
+                                          self.decomposition, self.dist, self.timers)
+                    if case.has_sph else None)
+        self.coupling = None
+        if case.coupled:
+            from .physics.coupling import Coupling
+
+            self.coupling = Coupling(case, self.particles, self.mpm, self.sph)
 
     def _decompose(self, case):
         """Slabs of the grid; a pure-SPH scene cuts its [domain] box on a lattice of cells of
@@ -148,13 +163,37 @@ class Simulation(Restart, Rebalancing):
 
     def _initial_dt(self):
         tspec = self.case.time
-        limit = self.stable_dt()
-        if tspec.dt is not None:
-            if tspec.dt > limit:
+        limit = self.stable_dt()  # collective; the check below is local and agreed on
+
+        def check():
+            if tspec.dt is not None and tspec.dt > limit:
                 raise ConfigError("time.dt", f"{tspec.dt:g} is above the stable limit "
                                   f"{limit:.4g} (= cell size / (wave speed + |v|))")
-            return tspec.dt
-        return tspec.cfl * limit
+            return tspec.dt if tspec.dt is not None else tspec.cfl * limit
+
+        return self.dist.agree("time", check)
+
+    def steps_to_end(self):
+        """About how many steps remain to time.end at the current dt."""
+        return max(self.case.time.end - self.time, 0.0) / self.dt
+
+    def check_step_count(self, max_steps=None):
+        """Refuse a run that would take more than time.max_steps steps (a dt typed 1e-15
+        would run until killed) unless `max_steps` (--max-steps) bounds it. Collective."""
+        tspec = self.case.time
+
+        def check():
+            steps = self.steps_to_end()
+            if max_steps is None and steps > tspec.max_steps:
+                key = "time.dt" if tspec.dt is not None else "time.end"
+                how = f"dt = {self.dt:.4g}" + ("" if tspec.dt is not None else " (from cfl)")
+                raise ConfigError(key, f"{how} and end = {tspec.end:g} mean about "
+                                  f"{steps:.3g} steps, more than time.max_steps = "
+                                  f"{tspec.max_steps}: check dt and end, or raise "
+                                  "time.max_steps (or bound the run with --max-steps) if you "
+                                  "mean it")
+
+        self.dist.agree("time", check)
 
     def _update_dt(self):
         if self.case.time.cfl is not None:
@@ -169,14 +208,15 @@ class Simulation(Restart, Rebalancing):
         from .io.h5files import code_version
         from .io.snapshots import SnapshotWriter
 
-        os.makedirs(self.out_dir, exist_ok=True) if self.dist.is_root else None
-        self.dist.barrier()
+        from .io.folders import check_output_folder, make_output_folder
+
+        def make():  # checked again: files may have appeared while the scene was built
+            check_output_folder(self.out_dir, overwrite, self.out_key)
+            make_output_folder(self.out_dir, self.out_key)
+
+        self.dist.agree("output files", make, root_only=True)
         h5 = os.path.join(self.out_dir, "particles.h5")
         csv = os.path.join(self.out_dir, "diagnostics.csv")
-        exists = self.dist.bcast(os.path.exists(h5) or os.path.exists(csv))
-        if exists and not overwrite:
-            raise ConfigError("--out", f"output already present in {self.out_dir}; pass "
-                              "--overwrite to replace it")
         self.writer = SnapshotWriter(self.dist, h5, case_text=self.case.text,
                                      attrs={"case_name": self.case.name, "dim": self.dim,
                                             "code_version": code_version()},

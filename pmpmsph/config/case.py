@@ -162,6 +162,9 @@ class TimeSpec:
     end: float
     dt: Optional[float] = None
     cfl: Optional[float] = None
+    # the most steps a run of the case may take: a dt/end pair needing more (e.g. a dt typed
+    # 1e-15 for 1e-5) is refused before step 1 unless this is raised or --max-steps bounds it
+    max_steps: int = 100_000_000
 
 
 #: default diagnostics schedule: every step up to this many particles, ...

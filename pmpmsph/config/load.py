@@ -34,6 +34,8 @@ def parse_set(assignments):
             parsed = tomllib.loads(f"v = {val}")["v"]
         except tomllib.TOMLDecodeError:
             parsed = val  # a bare word is a string
+        except RecursionError:
+            raise ConfigError(key.strip(), "--set value nested too deep") from None
         out.append((key.strip(), parsed))
     return out
 
@@ -64,6 +66,8 @@ def load_case_text(text, name="case", overrides=(), base_dir=None):
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError("<toml>", f"not valid TOML: {exc}") from None
+    except RecursionError:  # tomllib parses nested arrays and tables recursively
+        raise ConfigError("<toml>", "not valid input: values nested too deep") from None
     data = apply_overrides(data, overrides)
     token = CASE_DIR.set(base_dir)
     try:
@@ -396,6 +400,7 @@ def case_from_dict(data, name="case", text=""):
     cfl = tt.number("cfl", None, min_open=0.0, max=1.0)
     if (dt is None) == (cfl is None):
         raise ConfigError(tt.key("dt"), "give exactly one of time.dt or time.cfl")
+    max_steps = tt.number("max_steps", TimeSpec.max_steps, integer=True, min=1)
     tt.finish()
 
     ot = root.sub("output", {})
@@ -406,6 +411,9 @@ def case_from_dict(data, name="case", text=""):
     fields = ot.raw("fields", list(OutputSpec().fields))
     if not isinstance(fields, list) or not all(isinstance(f, str) for f in fields):
         raise ConfigError(ot.key("fields"), "expected a list of field names")
+    if not fields:
+        raise ConfigError(ot.key("fields"), "a snapshot needs at least one field (e.g. "
+                          "[\"gid\", \"x\"]); use --no-output for a run that writes nothing")
     output = OutputSpec(every=every, every_steps=every_steps,
                         diagnostics_every=ot.number("diagnostics_every", None, integer=True,
                                                     min=1),
@@ -425,7 +433,7 @@ def case_from_dict(data, name="case", text=""):
     root.finish()
     case = Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
                 boundaries=boundaries, loads=loads, prescribed=prescribed, gravity=gravity,
-                time=TimeSpec(end, dt, cfl), output=output, parallel=parallel, sph=sph,
+                time=TimeSpec(end, dt, cfl, max_steps), output=output, parallel=parallel, sph=sph,
                 domain=domain, regions=regions, coupling=coupling, text=text)
     if mpm.deformation == "J" and not case.tracks_J_only:
         raise ConfigError("mpm.deformation", "J alone describes fluids only: it needs a pure-MPM "

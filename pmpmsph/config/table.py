@@ -73,21 +73,21 @@ class Table:
         v = self.raw(name)
         k = self.key(name)
         if not _is_number(v):
-            raise ConfigError(k, f"expected a number, got {v!r}")
+            raise ConfigError(k, f"expected a number, got {_short(v)}")
         if not is_finite(v):
             raise ConfigError(k, f"must be finite, got {_short(v)}")
         if integer:
             if int(v) != v:
-                raise ConfigError(k, f"expected a whole number, got {v!r}")
+                raise ConfigError(k, f"expected a whole number, got {_short(v)}")
             v = int(v)
         if min is not None and v < min:
-            raise ConfigError(k, f"must be >= {min}, got {v!r}")
+            raise ConfigError(k, f"must be >= {min}, got {_short(v)}")
         if min_open is not None and v <= min_open:
-            raise ConfigError(k, f"must be > {min_open}, got {v!r}")
+            raise ConfigError(k, f"must be > {min_open}, got {_short(v)}")
         if max is not None and v > max:
-            raise ConfigError(k, f"must be <= {max}, got {v!r}")
+            raise ConfigError(k, f"must be <= {max}, got {_short(v)}")
         if max_open is not None and v >= max_open:
-            raise ConfigError(k, f"must be < {max_open}, got {v!r}")
+            raise ConfigError(k, f"must be < {max_open}, got {_short(v)}")
         return v
 
     def vector(self, name, length, default=_MISSING, *, positive=False, integer=False,
@@ -101,17 +101,17 @@ class Table:
         if scalar_ok and _is_number(v):
             v = [v] * length
         if not isinstance(v, (list, tuple)) or len(v) != length:
-            raise ConfigError(k, f"expected a list of {length} numbers, got {v!r}")
+            raise ConfigError(k, f"expected a list of {length} numbers, got {_short(v)}")
         out = []
         for i, item in enumerate(v):
             if not _is_number(item) or not is_finite(item):
                 raise ConfigError(f"{k}[{i}]", f"expected a finite number, got {_short(item)}")
             if integer:
                 if int(item) != item:
-                    raise ConfigError(f"{k}[{i}]", f"expected a whole number, got {item!r}")
+                    raise ConfigError(f"{k}[{i}]", f"expected a whole number, got {_short(item)}")
                 item = int(item)
             if positive and item <= 0:
-                raise ConfigError(f"{k}[{i}]", f"must be > 0, got {item!r}")
+                raise ConfigError(f"{k}[{i}]", f"must be > 0, got {_short(item)}")
             out.append(item)
         return tuple(out)
 
@@ -122,15 +122,15 @@ class Table:
         v = self.raw(name)
         k = self.key(name)
         if not isinstance(v, str):
-            raise ConfigError(k, f"expected a string, got {v!r}")
+            raise ConfigError(k, f"expected a string, got {_short(v)}")
         if choices is not None and v not in choices:
-            raise ConfigError(k, f"unknown value {v!r}; choose one of {', '.join(sorted(choices))}")
+            raise ConfigError(k, f"unknown value {_short(v)}; choose one of {', '.join(sorted(choices))}")
         return v
 
     def boolean(self, name, default=_MISSING):
         v = self.raw(name, default)
         if not isinstance(v, bool):
-            raise ConfigError(self.key(name), f"expected true or false, got {v!r}")
+            raise ConfigError(self.key(name), f"expected true or false, got {_short(v)}")
         return v
 
     def finish(self):

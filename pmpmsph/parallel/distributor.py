@@ -8,6 +8,12 @@ import os
 
 import numpy as np
 
+from ..errors import ConfigError
+
+#: the points before step 1 where the ranks agree on bad input (`Distributor.agree`); the
+#: fault tests inject an error on one rank at each (PMPMSPH_INJECT_CONFIG_ERROR=rank:place)
+AGREEMENT_PLACES = ("case", "output location", "build", "time", "output files", "restart")
+
 
 def _world():
     from mpi4py import MPI
@@ -113,11 +119,45 @@ class Distributor:
         if self.size > 1:
             self.comm.Barrier()
 
+    def agree(self, place, fn, root_only=False):
+        """fn() on every rank (with `root_only`, on rank 0 only and its result broadcast),
+        then one collective on the outcome: a ConfigError on any rank is raised on every
+        rank (the lowest failing rank's), so no rank goes on into a collective the others
+        have left (DESIGN.md §4, "never hang"). fn must make no collective call itself.
+        `place` is one of AGREEMENT_PLACES."""
+        out, err = None, None
+        try:
+            _injected_config_error(place, self.rank)
+            if self.is_root or not root_only:
+                out = fn()
+        except ConfigError as exc:
+            err = (exc.key, exc.reason)
+        if self.size > 1:
+            outcomes = self.comm.allgather((err, out if root_only and self.is_root else None))
+            err = next((e for e, _ in outcomes if e is not None), None)
+            if root_only:
+                out = outcomes[0][1]
+        if err is not None:
+            raise ConfigError(*err)
+        return out
+
     def abort(self, code):
         """End every rank now (used when one rank fails outside a collective decision)."""
         if self.size > 1:
             self.comm.Abort(code)
         raise SystemExit(code)
+
+
+def _injected_config_error(place, rank):
+    """The fault tests' bad input on one rank only: PMPMSPH_INJECT_CONFIG_ERROR=rank:place."""
+    spec = os.environ.get("PMPMSPH_INJECT_CONFIG_ERROR")
+    if not spec:
+        return
+    where, _, what = spec.partition(":")
+    if what not in AGREEMENT_PLACES:
+        raise ValueError(f"PMPMSPH_INJECT_CONFIG_ERROR: unknown place {what!r}")
+    if int(where) == rank and what == place:
+        raise ConfigError(f"<{place}>", f"fault injected on rank {rank} at {place}")
 
 
 #: where every compiled function lives (kernels may only import numpy, numba, math and these)

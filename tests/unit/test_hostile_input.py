@@ -8,12 +8,12 @@ handful go through real `python -m pmpmsph` subprocesses, and a subset runs unde
 """
 import hashlib
 import os
-import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
+from bounded_run import run_bounded
 from pmpmsph.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -23,14 +23,15 @@ TIMEOUT = 180  # s per subprocess: a hang fails the test instead of the suite
 
 
 def _header(path):
-    """{"expect": key, "ranks": "2", "output": "exists"} from the leading comment lines."""
+    """{"expect": key, "ranks": "2", "output": "exists", "out": ..., "args": ...} from the
+    leading comment lines."""
     head = {}
     for raw in path.read_bytes().splitlines():
         line = raw.decode("utf-8", "replace").strip()
         if not line.startswith("#"):
             break
         name, sep, value = line[1:].partition(":")
-        if sep and name.strip() in ("expect", "ranks", "output"):
+        if sep and name.strip() in ("expect", "ranks", "output", "out", "args"):
             head[name.strip()] = value.strip()
     return head
 
@@ -46,13 +47,17 @@ OLD_FILES = {"particles.h5": b"\x89HDF\r\n\x1a\n old run, must survive",
 
 #: through real subprocesses on one rank
 SUBPROCESS_1 = ["syntax_unclosed_table", "missing_time", "absurd_particles_spacing",
-                "overlap_two_boxes", "not_utf8", "output_folder_escapes", "output_exists"]
+                "overlap_two_boxes", "not_utf8", "output_folder_escapes", "output_exists",
+                "out_is_file", "out_cannot_be_made", "nesting_too_deep", "max_steps_negative"]
 #: under mpirun -n 2 (load, build, decomposition and collective run-time decisions)
 SUBSET_2 = ["syntax_unclosed_table", "type_string_for_number", "missing_materials",
             "poisson_half", "nan_modulus", "unknown_key_densty", "absurd_particles_ppc",
             "overlap_two_boxes", "empty_body", "outside_grid", "sph_h_zero",
             "sph_unknown_kernel", "output_folder_escapes", "mesh_broken_file",
-            "ranks_grid_too_thin", "dt_above_stable_limit", "output_exists"]
+            "ranks_grid_too_thin", "dt_above_stable_limit", "output_exists",
+            "out_is_file", "out_is_file_without_overwrite", "out_cannot_be_made",
+            "nesting_too_deep", "output_fields_empty", "dt_absurd_step_count",
+            "max_steps_negative", "max_steps_not_integer"]
 
 
 def test_corpus_is_complete():
@@ -82,11 +87,16 @@ def _prepare(workdir, name):
     """The command-line arguments of one corpus file run in `workdir` (relative --out, so
     the message is the same whichever folder runs it); the existing-output case gets an
     'out' folder holding an old run."""
+    head = HEADERS[name]
+    out = head.get("out", "out")
     if name in EXISTING_OUTPUT:
         (workdir / "out").mkdir()
         for f, data in OLD_FILES.items():
             (workdir / "out" / f).write_bytes(data)
-    return ["run", str(CORPUS_DIR / f"{name}.toml"), "--out", "out"]
+    if out == "file":  # --out names an existing regular file
+        out = "out"
+        (workdir / out).write_bytes(b"not a folder")
+    return ["run", str(CORPUS_DIR / f"{name}.toml"), "--out", out, *head.get("args", "").split()]
 
 
 def _check_message(name, out, err):
@@ -151,8 +161,8 @@ def _env():
 def test_subprocess_one_rank(name, tmp_path):
     args = _prepare(tmp_path, name)
     before = _tree(tmp_path)
-    r = subprocess.run([sys.executable, "-m", "pmpmsph", *args], capture_output=True,
-                       text=True, cwd=tmp_path, env=_env(), timeout=TIMEOUT)
+    r = run_bounded([sys.executable, "-m", "pmpmsph", *args], TIMEOUT, cwd=tmp_path,
+                    env=_env())
     assert r.returncode == 2, f"{name}: exit status {r.returncode}\n{r.stdout}\n{r.stderr}"
     _check_message(name, r.stdout, r.stderr)
     assert _tree(tmp_path) == before, f"{name}: files created or changed"
@@ -185,9 +195,8 @@ def test_two_ranks(name, tmp_path, capsys):
     args = _prepare(work, name)
     before = _tree(work)
     env = dict(_env(), HOSTILE_RC_DIR=str(rcdir), OMPI_MCA_orte_abort_on_non_zero_status="0")
-    r = subprocess.run([str(MPIRUN), "-n", "2", "--quiet", sys.executable, "-c", _RANK_MAIN,
-                        *args], capture_output=True, text=True, cwd=work, env=env,
-                       timeout=TIMEOUT)
+    r = run_bounded([str(MPIRUN), "-n", "2", "--quiet", sys.executable, "-c", _RANK_MAIN,
+                     *args], TIMEOUT, cwd=work, env=env)
     codes = {f.name: f.read_text() for f in rcdir.iterdir()}
     assert codes == {"rc.0": "2", "rc.1": "2"}, f"{name}: {codes}\n{r.stdout}\n{r.stderr}"
     line = _check_message(name, r.stdout, r.stderr)
