@@ -11,6 +11,8 @@ import subprocess
 import sys
 import time
 
+from bounded_run import run_bounded
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CASE = """
 dimension = 2
@@ -40,7 +42,7 @@ def _mpirun(args, env_extra, timeout):
     cmd = [os.path.join(ROOT, "scripts", "mpirun"), "-n", "2", sys.executable, "-m", "pmpmsph",
            *args]
     t0 = time.perf_counter()
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)
+    r = run_bounded(cmd, timeout, env=env, cwd=ROOT)  # a hang kills mpirun and its ranks
     return r, time.perf_counter() - t0
 
 
