@@ -111,7 +111,8 @@ def cmd_check(args, dist):
     from .simulation import Simulation
 
     case = _load(args, dist)
-    sim = Simulation(case, dist=dist, write_output=False, max_steps=args.max_steps)
+    sim = Simulation(case, dist=dist, write_output=False, max_steps=args.max_steps,
+                     check_steps=True)
     n = dist.sum(sim.particles.n_owned)
     nodes = sim.mpm.grid.n_nodes if sim.mpm else 0
     steps = int(round(sim.steps_to_end()))
@@ -142,7 +143,7 @@ def cmd_run(args, dist):
     sim = Simulation(case, dist=dist, out_dir=None if args.restart else out,
                      overwrite=args.overwrite,
                      out_key="--out" if args.out or args.restart else "output.folder",
-                     max_steps=args.max_steps)
+                     max_steps=args.max_steps, check_steps=True)
     sim.case_overrides = tuple(overrides)
     sim.case_dir = os.path.dirname(os.path.abspath(args.case)) if args.case else None
     if args.restart:

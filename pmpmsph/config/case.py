@@ -75,6 +75,7 @@ class SPHSpec:
     hourglass: float = 0.0             # updated solids: hourglass control factor kappa
                                        # (kernels/sph_hourglass.py; 0: off)
     damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
+    density_diffusion: float = 0.1     # fluids: delta of delta-SPH (Antuono 2010; 0: off)
     wall_no_slip: bool = True          # dummy walls: no-slip or free slip
     pressure_min: float = float("-inf")  # fluids: floor of the pressure (0: no tension)
     hydrostatic: bool = False          # fluids start at the hydrostatic density

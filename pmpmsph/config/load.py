@@ -253,6 +253,9 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         # the odd-even mode of the corrected solid (kernels/sph_hourglass.py), off by default
         hourglass=_hourglass(t, formulation, integrator),
         damping=t.number("damping", 0.0, min=0.0),
+        # delta of the delta-SPH density diffusion of fluids (kernels/sph_density.py);
+        # 0.1 is Antuono et al.'s (2010) value, 0 switches it off
+        density_diffusion=t.number("density_diffusion", 0.1, min=0.0, max=1.0),
         wall_no_slip=walls == "no_slip",
         pressure_min=t.number("pressure_min", float("-inf")),
         hydrostatic=t.boolean("hydrostatic", False))

@@ -128,7 +128,8 @@ def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
 @njit
 def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
               start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
-              acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None):
+              acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None,
+              dcoef=None, gradrho=None):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
@@ -206,7 +207,14 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     across a material interface keep the plain gradient (they act along x_ab). This cures
     the truncated-kernel error of the stress and velocity gradient at a free surface
     (seed 004 §2.1; measured on scene 11: the surface row's velocity gradient of the exact
-    Kirsch field is 23 % short plain, 5 % corrected)."""
+    Kirsch field is 23 % short plain, 5 % corrected).
+
+    With `dcoef` (delta h c0 per material, 0 where a material does not diffuse) and the
+    renormalised density gradients `gradrho` of `kernels.sph_density.density_gradient`, the
+    continuity equation of a pair of SPH rows of one such material gains the delta-SPH
+    diffusion of Antuono et al. (2010), eq. (5) (see kernels/sph_density.py):
+        drho_a += dcoef V_b psi_ab . grad_a W_ab,   drho_b -= dcoef V_a psi_ab . grad_a W_ab
+    (psi_ba = psi_ab and grad_b W_ba = -grad_a W_ab)."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     corr = len(corr_tag) > 0
@@ -215,6 +223,10 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     if fcpl is None:  # (not coupled, or the seed's interface)
         fcpl = np.zeros((0, dim))
     one_sided = fcpl.shape[0] > 0
+    if dcoef is None:  # (no delta-SPH diffusion)
+        dcoef = np.zeros(0)
+        gradrho = np.zeros((0, 3))
+    diffuse = dcoef.shape[0] > 0
     if want_fsi or one_sided:
         for a in range(n_query):
             if method[a] == MPM:
@@ -304,6 +316,18 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                     drho[b] += 2.0 * rho[b] * ma / rho[a] * (vab0 * g0 + vab1 * g1 + vab2 * g2)
                 else:
                     drho[b] += ma * (vab0 * cb0 + vab1 * cb1 + vab2 * cb2)
+            if (diffuse and method[a] == SPH and method[b] == SPH and mat[a] == mat[b]
+                    and dcoef[mat[a]] > 0.0):
+                # psi_ab . grad_a W_ab = -2 (rho_b - rho_a) fr - (<grad rho>_a + <grad rho>_b).g
+                pg = -2.0 * (rho[b] - rho[a]) * fr - (gradrho[a, 0] + gradrho[b, 0]) * g0
+                if dim > 1:
+                    pg -= (gradrho[a, 1] + gradrho[b, 1]) * g1
+                if dim > 2:
+                    pg -= (gradrho[a, 2] + gradrho[b, 2]) * g2
+                if upd_a:
+                    drho[a] += dcoef[mat[a]] * mb / rho[b] * pg
+                if upd_b:
+                    drho[b] -= dcoef[mat[a]] * ma / rho[a] * pg
             if want_L:
                 if kin_a:  # m_b (v~_b - v_a) (x) G_ab
                     u0 = mb * (vg[b, 0] - va0)

@@ -32,6 +32,7 @@ from ..kernels.sph import (
 )
 from ..kernels.sph_artificial_stress import artificial_stress
 from ..kernels.sph_correction import correction_matrices
+from ..kernels.sph_density import density_gradient
 from ..kernels.sph_hourglass import hourglass_fit, hourglass_forces
 from ..kernels.sph_integrate import (
     add_scaled,
@@ -53,6 +54,16 @@ HALO_MARGIN = 0.5
 #: Verlet skin of the neighbour lists, in units of h: lists (and the halo's membership) are
 #: kept until some particle has moved half the skin since they were built
 SKIN = 0.25
+
+
+def diffusing_fluids(case):
+    """Whether the scene's SPH fluids take the delta-SPH density diffusion: an updated-
+    Lagrangian scene with a Tait fluid body (not only walls) and a non-zero delta."""
+    from ..materials.codes import TAIT_FLUID
+
+    return (case.sph.formulation == "updated" and case.sph.density_diffusion > 0.0
+            and any(not b.wall and case.materials[b.material].type_code == TAIT_FLUID
+                    for b in case.bodies))
 
 
 class SPHStage:
@@ -97,6 +108,14 @@ class SPHStage:
         self.fluid = np.array([code == TAIT_FLUID for code in mtypes], np.bool_)
         self._M = np.zeros((0, 3, 3))
         self._A = np.zeros((0, 3, 3))
+        # delta-SPH: delta h c0 per material (c0 = sqrt(kappa gamma / rho0) of a Tait
+        # fluid), 0 for the others; None when no fluid diffuses
+        self.dcoef = None
+        if diffusing_fluids(case):
+            self.dcoef = np.array([spec.density_diffusion * self.h
+                                   * np.sqrt(mparams[i, 0] * mparams[i, 1] / mparams[i, 2])
+                                   if mtypes[i] == TAIT_FLUID else 0.0
+                                   for i in range(len(mtypes))])
         self.lo = np.array(case.domain[0], float)
         self.hi = np.array(case.domain[1], float)
         self.start = np.zeros(1, np.int64)
@@ -125,6 +144,8 @@ class SPHStage:
             out.append(FieldSpec("R", (6,), migrate=False))
         if case.sph.correction:
             out.append(FieldSpec("B", (3, 3), migrate=False, fill="identity"))
+        if diffusing_fluids(case):  # delta-SPH: renormalised density gradients
+            out.append(FieldSpec("gradrho", (3,), migrate=False))
         if case.sph.hourglass > 0.0:   # reference positions (set at seeding, build.py)
             out += [FieldSpec("X0", ("dim",), halo=True, output=True),
                     FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
@@ -164,6 +185,7 @@ class SPHStage:
         # the halo if so (collectively), else refresh the halo in place
         self._update_neighbours()
         self._correction(halo=False)
+        self._density_gradient()
         with t.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
             sph_rates(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
@@ -174,7 +196,30 @@ class SPHStage:
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
                       p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True,
                       np.zeros((0, self.dim)), False, self.corr_tag, self._B(), self.fluid,
-                      np.zeros((0, self.dim)))
+                      np.zeros((0, self.dim)), *self._diffusion())
+
+    def _density_gradient(self):
+        """delta-SPH: the renormalised density gradient of the owned fluid rows, refreshed in
+        the halo (the diffusion needs it at both ends of a pair). No-op without it."""
+        if self.dcoef is None:
+            return
+        p = self.p
+        n = p.n_owned
+        self._M = rows_at_least(self._M, n)
+        with self.timers.phase("sph"):
+            density_gradient(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+                             p.with_halo("mass"), p.with_halo("rho"), p.with_halo("method"),
+                             p.with_halo("mat"), self.dcoef, self.start, self.index, self._M,
+                             p.with_halo("gradrho"))
+        if self.halo_enabled:
+            with self.timers.phase("halo"):
+                self.halo.refresh(("gradrho",))
+
+    def _diffusion(self):
+        """The sph_rates arguments of delta-SPH (None, None: off)."""
+        if self.dcoef is None:
+            return None, None
+        return self.dcoef, self.p.with_halo("gradrho")
 
     def _B(self):
         return self.p.with_halo("B") if self.corr else np.zeros((0, 3, 3))
@@ -263,6 +308,7 @@ class SPHStage:
                 with t.phase("halo"):
                     self.halo.refresh(("rho", "sigma", "vg"))
         self._correction(halo=True)
+        self._density_gradient()
         self._hourglass_fit()
         with t.phase("sph"):
             rho, sigma = p.with_halo("rho"), p.with_halo("sigma")
@@ -282,7 +328,8 @@ class SPHStage:
                       p.with_halo("drho"), p.with_halo("L"), True, self.want_L,
                       p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
                       "fsi" in p, self.corr_tag, self._B(), self.fluid,
-                      p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)))
+                      p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)),
+                      *self._diffusion())
             if self.hourglass > 0.0:
                 hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                                  p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),

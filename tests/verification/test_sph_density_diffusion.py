@@ -1,0 +1,94 @@
+"""delta-SPH density diffusion (Antuono et al. 2010; kernels/sph_density.py).
+
+1. The renormalised density gradient is exact for a linear density field on a lattice, at
+   its edges too, and then the diffusion term vanishes (the property that keeps a
+   hydrostatic column at rest), where the Molteni-Colagrossi term alone (gradients left
+   out) does not: it is of order c0 |grad rho| h at the free edges.
+2. Hydrostatic tank (cases/sph_hydrostatic.toml, started in its hydrostatic state, without
+   the case's damping, 1 s = 7.7 acoustic periods 4H/c0): the pressure noise, std over the
+   water particles more than two spacings deep of p / (rho0 g (h - y)) - 1 with h the free
+   surface (the top row's y + dp/2), is below 1 % with delta-SPH and at most 0.6 x what it
+   is without; no drift: 99 % of the particles stay within 0.1 spacing of their start, those
+   deeper than 8 spacings within 0.05 (the two surface particles at the wall corners move
+   0.17 spacings with or without diffusion: the corner of wall and free surface).
+
+Measured (this build): noise 0.68 % with delta = 0.1 against 1.73 % without (below 4
+spacings 0.41 % against 0.93 %; below one spacing 1.03 % against 1.78 %); displacements:
+99th percentile 0.061 / 0.042 spacings, deep 0.012 / 0.005; 30 s for both runs.
+"""
+from pathlib import Path
+
+import numpy as np
+from mpi4py import MPI
+
+from pmpmsph import load_case_file
+from pmpmsph.kernels.neighbours import neighbour_lists
+from pmpmsph.kernels.sph import sph_rates
+from pmpmsph.kernels.sph_density import density_gradient
+from pmpmsph.parallel.distributor import Distributor
+from pmpmsph.simulation import Simulation
+
+CASE = Path(__file__).resolve().parents[2] / "cases" / "sph_hydrostatic.toml"
+DP = 0.025
+
+
+def _diffusion_rates(x, rho, mass, h, grad):
+    """drho/dt of fluid rows at rest: the diffusion term alone (delta h c0 = 1)."""
+    n = len(x)
+    method, mat = np.ones(n, np.int8), np.zeros(n, np.int32)
+    start, index = neighbour_lists(x, n, 2 * h, half=True)
+    acc, drho, L, v = np.zeros((n, 2)), np.zeros(n), np.zeros((n, 3, 3)), np.zeros((n, 2))
+    sph_rates((0, 0), (0,), h, n, x, v, v, mass, rho, np.zeros((n, 6)), np.ones(n), method,
+              mat, start, index, 0.0, 0.0, False, np.zeros((0, 6)), 1.0, 1.0, np.zeros(3),
+              0.0, acc, drho, L, False, False, np.zeros((0, 2)), False, (),
+              np.zeros((0, 3, 3)), np.array([True]), None, np.ones(1), grad)
+    return drho
+
+
+def test_gradient_exact_and_diffusion_zero_for_a_linear_density():
+    dp, h = 0.1, 0.13
+    xs = np.arange(12) * dp
+    gx, gy = np.meshgrid(xs, xs, indexing="ij")
+    x = np.c_[gx.ravel(), gy.ravel()]
+    n = len(x)
+    slope = np.array([30.0, -50.0])
+    rho = 1000.0 + x @ slope
+    mass = np.full(n, 1000.0 * dp * dp)
+    start, index = neighbour_lists(x, n, 2 * h, half=True)
+    grad = np.zeros((n, 3))
+    density_gradient((0, 0), (0,), h, n, x, mass, rho, np.ones(n, np.int8),
+                     np.zeros(n, np.int32), np.ones(1), start, index, np.zeros((n, 3, 3)),
+                     grad)
+    assert np.abs(grad[:, :2] - slope).max() < 1e-9 * np.abs(slope).max()
+    assert np.all(grad[:, 2] == 0.0)
+    scale = np.abs(slope).max() / h  # |grad rho| h / h^2: the size of one pair term
+    antuono = _diffusion_rates(x, rho, mass, h, grad)
+    plain = _diffusion_rates(x, rho, mass, h, np.zeros((n, 3)))
+    assert np.abs(antuono).max() < 1e-12 * scale
+    assert np.abs(plain).max() > 1.0 * scale  # the free edges of the Molteni-Colagrossi term
+
+
+def _tank(delta):
+    sets = [("sph.density_diffusion", delta), ("sph.damping", 0.0),
+            ("sph.hydrostatic", True), ("time.end", 1.0)]
+    sim = Simulation(load_case_file(CASE, overrides=sets), dist=Distributor(MPI.COMM_SELF))
+    n = sim.particles.n_owned
+    water = sim.particles["method"][:n] == 1
+    x0 = sim.particles["x"][:n][water].copy()
+    sim.run()
+    p = sim.particles
+    x, sigma = p["x"][:n][water], p["sigma"][:n][water]
+    pressure = -0.5 * (sigma[:, 0, 0] + sigma[:, 1, 1])
+    depth = x[:, 1].max() + 0.5 * DP - x[:, 1]
+    below = depth > 2 * DP
+    noise = np.std(pressure[below] / (1000.0 * 9.81 * depth[below]) - 1.0)
+    moved = np.linalg.norm(x - x0, axis=1) / DP
+    return noise, np.percentile(moved, 99), moved[depth > 8 * DP].max()
+
+
+def test_hydrostatic_tank_pressure_noise():
+    noise, moved, moved_deep = _tank(0.1)
+    noise_without, _, _ = _tank(0.0)
+    assert noise < 0.01
+    assert noise < 0.6 * noise_without
+    assert moved < 0.1 and moved_deep < 0.05
