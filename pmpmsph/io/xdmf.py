@@ -2,14 +2,32 @@
 
 ``write_xdmf("RUN.h5")`` writes ``RUN.xdmf``: a temporal collection with one Polyvertex grid
 per snapshot (``Time`` = the snapshot time), geometry from the ``x`` dataset (always 3
-components) and one node-centred attribute per other field, every DataItem pointing into the
-HDF5 file by a relative path (``RUN.h5:/snapshots/000003/sigma``), so the pair can be moved
-together. Only metadata is read from the HDF5 file, never particle data.
+components) and one node-centred attribute per field, ``x`` included, every DataItem
+pointing into the HDF5 file by a relative path (``RUN.h5:/snapshots/000003/sigma``), so the
+pair can be moved together. Only metadata is read from the HDF5 file, never particle data.
 
 The Polyvertex topology points to an explicit connectivity 0..N-1 (``/xdmf/polyvertex/N``,
 written by the SnapshotWriter once per particle count): the XDMF2 reader would generate it,
 but the XDMF3 reader of ParaView builds no cells without it (points with no cells do not
 render). Snapshots with no particles are left out of the sidecar.
+
+Reading the sidecar with meshio. ``meshio.xdmf.TimeSeriesReader`` reads the geometry and
+topology once, from the first grid (``read_points_cells()``), and per step only the
+attributes (``read_data(k)``). That is why ``x`` is declared a second time, as a ``Vector``
+attribute of every grid (the same HDF5 dataset as the Geometry: one more XML element per
+snapshot, no byte more in the HDF5 file; ParaView shows it as one more point array):
+``read_data(k)`` returns step k's own positions as ``point_data["x"]``; the points of
+``read_points_cells()`` are those of the first snapshot only. Rows are not in the same order
+from one snapshot to the next (each rank writes its own particles at its offset, and
+particles migrate between ranks), so match particles of different steps by
+``point_data["gid"]`` (a default field of ``[output] fields``; a sidecar of snapshots
+without ``gid`` logs a warning), never by row. Rows are not sorted by gid when written: that
+would need a global redistribution or a scattered HDF5 selection at every snapshot, and
+output time is a measured cost of a run. ``meshio.read("RUN.xdmf")`` cannot read the file
+(it fails with ``Unknown section 'Grid'``): it reads exactly one Uniform grid and no
+temporal collection, which ParaView needs for the time series. For one mesh per snapshot use
+``python -m pmpmsph vtu RUN`` (VTU files that ``meshio.read`` opens, plus a ``.pvd``), or
+read the HDF5 file directly with :func:`pmpmsph.io.read_snapshot`.
 
 Attribute types by dataset shape: (N,) Scalar, (N, 3) Vector, (N, 3, 3) or (N, 9) Tensor,
 (N, 6) Tensor6, other (N, k) Matrix. Tensors are stored in their natural (N, 3, 3) shape and
@@ -134,9 +152,13 @@ def _snapshot_grid(f, name, h5path, rel):
         _data_item(topology, f"{rel}:/{TOPOLOGY}/{n}", conn.shape, conn.dtype)
     geometry = ET.SubElement(grid, "Geometry", {"GeometryType": "XYZ"})
     _data_item(geometry, f"{rel}:/{GROUP}/{name}/x", grp["x"].shape, grp["x"].dtype)
+    if "gid" not in grp:
+        _warn_once((h5path, "no gid"), f"{h5path}: snapshot {name} has no 'gid' field, so its "
+                   "particles cannot be matched with those of other snapshots (rows are not "
+                   "in the same order); keep 'gid' in [output] fields")
+    # x too (after the Geometry, in the written order): meshio's TimeSeriesReader reads the
+    # Geometry of the first grid only, and the attributes of every grid
     for field in grp.keys():
-        if field == "x":
-            continue
         dset = grp[field]
         atype = attribute_type(dset.shape)
         if atype is None or number_type(dset.dtype) is None or dset.shape[0] != n:
