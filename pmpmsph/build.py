@@ -177,8 +177,6 @@ def build_particles(case, keep=None):
             vals["rho"] = mat.rho0 * np.ones(n)
         if "X0" in ps:
             vals["X0"] = x
-        if body.wall:
-            vals["v"] = np.zeros((n, dim))
         if body.stress:
             s = _voigt_to_tensor(body.stress, dim)
             vals["sigma"] = np.tile(s, (n, 1, 1))

@@ -234,10 +234,13 @@ class Simulation(Restart, Rebalancing):
         return {"precision": self.case.output.precision}
 
     def snapshot_fields(self):
+        """The case's output fields, plus gid and x if it leaves them out: a snapshot is
+        matched to another by gid (rows follow the ranks, io/xdmf.py) and drawn at x."""
         p = self.particles
         n = p.n_owned
         out = {}
-        for name in self.case.output.fields:
+        fields = self.case.output.fields
+        for name in fields + tuple(k for k in ("gid", "x") if k not in fields):
             if name == "rho" and "rho" not in p:
                 out["rho"] = p["mass"][:n] / p["vol"][:n]
             elif name in p:

@@ -175,3 +175,32 @@ def mode_velocity(sim):
 
     x = sim.particles["x"][:, 0]
     sim.particles["v"][:, 0] = BAR_V0 * np.sin(np.pi / (2 * BAR_L) * x)
+
+
+def sph_cavity(n=30, end=20.0, laminar="morris", reynolds=100.0, c0=10.0):
+    """Lid-driven cavity (Ghia, Ghia & Shin 1982): a unit square of water-like Tait fluid
+    (rho0 = 1000, c0 = 10 x the lid speed U = 1, mu = rho0 U / Re) in no-slip dummy walls
+    (4 layers) whose top layer slides at U (wall particles that stay in place and carry the
+    velocity: Adami et al.'s ghost velocity 2 U - v~), n x n particles, Wendland C2 kernel
+    at h = 1.3 spacings, no artificial viscosity, delta-SPH, predictor-corrector at
+    Courant number 0.25, no gravity."""
+    dp = 1.0 / n
+    w = 4 * dp
+    rho0 = 1000.0
+    sc = Scene(2, domain=dict(min=[-w - dp, -w - dp], max=[1 + w + dp, 1 + w + dp]),
+               time=dict(end=end, cfl=0.25),
+               sph=dict(kernel="wendland", h_factor=1.3, integrator="predictor_corrector",
+                        walls="no_slip",
+                        viscosity=dict(alpha=0.0, beta=0.0, laminar=laminar)),
+               parallel=dict(balance_every=0))
+    sc.material("water", model="tait", rho=rho0, kappa=c0 * c0 * rho0 / 7.0, gamma=7.0,
+                mu=rho0 / reynolds)
+    sc.body(name="fluid", method="sph", material="water", shape="box", min=[0, 0],
+            max=[1, 1], spacing=dp)
+    for name, lo, hi in (("floor", [-w, -w], [1 + w, 0]), ("left", [-w, 0], [0, 1]),
+                         ("right", [1, 0], [1 + w, 1])):
+        sc.body(name=name, method="sph", wall=True, material="water", shape="box", min=lo,
+                max=hi, spacing=dp)
+    sc.body(name="lid", method="sph", wall=True, material="water", shape="box",
+            min=[-w, 1], max=[1 + w, 1 + w], spacing=dp, velocity=[1.0, 0.0])
+    return sc

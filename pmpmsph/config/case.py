@@ -70,6 +70,8 @@ class SPHSpec:
     integrator: str = "predictor_corrector"
     av_alpha: float = 1.0              # artificial viscosity (seed 000, eq. 2.7)
     av_beta: float = 1.0
+    laminar: str = "morris"            # fluids' physical viscosity mu: pairwise (Morris et
+                                       # al. 1997) or from the stress sigma = 2 mu dev(d)
     artificial_stress: float = 0.0     # epsilon of Gray, Monaghan & Swift (0: off)
     artificial_stress_exponent: float = 4.0
     hourglass: float = 0.0             # updated solids: hourglass control factor kappa
@@ -96,7 +98,9 @@ class BodySpec:
     count: Optional[tuple] = None
     velocity: tuple = ()
     stress: tuple = ()          # initial (pre-)stress, Voigt order for the dimension
-    wall: bool = False          # SPH dummy wall particles (fixed, pressure extrapolated)
+    wall: bool = False          # SPH dummy wall particles (pressure extrapolated); their
+                                # `velocity` is the wall's (a lid: no-slip drags the fluid)
+    moving: bool = False        # a wall that also moves with its velocity (else it stays)
 
 
 @dataclass(frozen=True)

@@ -171,11 +171,17 @@ def _body(t, dim, materials, grid):
     if wall and method != "sph":
         raise ConfigError(t.key("wall"), "wall particles are SPH dummy particles: set "
                           "method = \"sph\" (MPM walls are grid boundaries)")
+    moving = t.boolean("moving", False)
+    if moving and not wall:
+        raise ConfigError(t.key("moving"), "moving is for wall bodies (wall = true), whose "
+                          "particles otherwise stay in place; other bodies move by their "
+                          "own dynamics")
     if method == "sph" and ppc is not None and grid is None:
         raise ConfigError(t.key("ppc"), "SPH bodies without a [grid] are seeded by spacing "
                           "or count, not ppc")
     t.finish()
-    return BodySpec(name, method, mat, geom, ppc, spacing, count, velocity, stress, wall)
+    return BodySpec(name, method, mat, geom, ppc, spacing, count, velocity, stress, wall,
+                    moving)
 
 
 def _body_spacing(body, grid=None):
@@ -232,6 +238,9 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     visc = t.sub("viscosity", {})
     av_alpha = visc.number("alpha", 1.0, min=0.0)
     av_beta = visc.number("beta", 1.0, min=0.0)
+    # the fluids' physical viscosity (their material's mu): pairwise velocity differences
+    # (Morris, Fox & Zhu 1997), or the divergence of sigma = 2 mu dev(d) (kernels/sph.py)
+    laminar = visc.string("laminar", "morris", choices=("morris", "stress"))
     visc.finish()
     walls = t.string("walls", "no_slip", choices=("no_slip", "slip"))
     for i, b in enumerate(bodies):
@@ -247,7 +256,7 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         correction=t.boolean("correction", formulation == "total"),
         deformation=t.string("deformation", "reference", choices=("reference", "rate")),
         force=t.string("force", "current", choices=("current", "reference")),
-        integrator=integrator, av_alpha=av_alpha, av_beta=av_beta,
+        integrator=integrator, av_alpha=av_alpha, av_beta=av_beta, laminar=laminar,
         artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
         # the odd-even mode of the corrected solid (kernels/sph_hourglass.py), off by default

@@ -68,11 +68,12 @@ def pair_stress(dim_tag, n, sigma, rho, S):
 
 @njit
 def sph_stress(n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mparams,
-               sigma, vol, mass, p_min):
+               sigma, vol, mass, p_min, morris_mu):
     """Stress and volume (m/rho) of owned SPH rows. A fluid's state is its continuity
     density: its F is set to diag(J, 1, 1) with J = rho0/rho (the Tait stress and energy
     depend on det F only; its pressure is floored at `p_min`), a solid's stress comes from
-    its integrated F. The material state
+    its integrated F. A fluid whose viscosity acts pairwise (morris_mu[mat] > 0, see
+    `sph_rates`; `morris_mu` may be empty) keeps the pressure alone. The material state
     restarts from `mstate_in` (the state at the step start) so that multi-stage integrators
     commit it once. Returns the first row with a NaN or non-positive J, or -1."""
     bad = -1
@@ -95,9 +96,10 @@ def sph_stress(n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mparams
         if not J > 0.0:
             bad = a if bad < 0 else bad
             continue
+        pairwise = morris_mu.shape[0] > 0 and morris_mu[mi] > 0.0
         for i in range(3):
             for j in range(3):
-                La[i, j] = L[a, i, j]
+                La[i, j] = 0.0 if pairwise else L[a, i, j]
         compute_stress(mtypes[mi], Fa, La, dt, mstate[a], mparams[mi], sigma[a])
         if mtypes[mi] == TAIT_FLUID:
             # a fluid under tension (a splash, the wake of a body) clumps: its pair forces
@@ -129,7 +131,7 @@ def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
 def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
               start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
               acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None,
-              dcoef=None, gradrho=None):
+              dcoef=None, gradrho=None, morris_mu=None):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
@@ -214,7 +216,18 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     continuity equation of a pair of SPH rows of one such material gains the delta-SPH
     diffusion of Antuono et al. (2010), eq. (5) (see kernels/sph_density.py):
         drho_a += dcoef V_b psi_ab . grad_a W_ab,   drho_b -= dcoef V_a psi_ab . grad_a W_ab
-    (psi_ba = psi_ab and grad_b W_ba = -grad_a W_ab)."""
+    (psi_ba = psi_ab and grad_b W_ba = -grad_a W_ab).
+
+    With `morris_mu` (the dynamic viscosity per material, 0 where a material's viscosity is
+    not pairwise) a pair of a fluid row a and a row b of the same fluid, or a dummy wall b,
+    gains the laminar viscous force of Morris, Fox & Zhu (1997), eq. (8):
+        dv_a/dt += m_b (mu_a + mu_b) x_ab . grad_a W_ab / (rho_a rho_b (r^2 + 0.01 h^2)) v~_ab
+    with v~_ab = v_a - v~_b, v~_b the wall's ghost velocity (Adami et al. 2012, eq. 23:
+    2 v_wall - v_fluid extrapolated, so that the no-slip condition holds on the wall
+    surface, `kernels.sph_walls`); the reaction on b (fluid rows only) conserves momentum.
+    It discretises mu lap(v) with second-order accuracy on regular lattices, and near a wall
+    it sees the wall's velocity through the ghost: the stress form's wall pairs carry the
+    wall's extrapolated viscous stress instead (`kernels.sph_walls.wall_state`)."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     corr = len(corr_tag) > 0
@@ -227,6 +240,9 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
         dcoef = np.zeros(0)
         gradrho = np.zeros((0, 3))
     diffuse = dcoef.shape[0] > 0
+    if morris_mu is None:  # (no pairwise viscosity)
+        morris_mu = np.zeros(0)
+    pairwise = morris_mu.shape[0] > 0
     if want_fsi or one_sided:
         for a in range(n_query):
             if method[a] == MPM:
@@ -367,6 +383,31 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                 eta = h * vx / (r2 + eps2)
                 pi = (-av_alpha * 0.5 * (cs[a] + cs[b]) * eta + av_beta * eta * eta) / (
                     0.5 * (rho[a] + rho[b]))
+            if pairwise:  # Morris et al. (1997) eq. 8 (docstring): k v~_ab, k < 0
+                same = method[a] == SPH and method[b] == SPH and mat[a] == mat[b]
+                to_a = upd_a and morris_mu[mat[a]] > 0.0 and (same or method[b] == WALL)
+                to_b = upd_b and morris_mu[mat[b]] > 0.0 and (same or method[a] == WALL)
+                if to_a or to_b:
+                    # a wall end takes the fluid's viscosity (its own material's is unused)
+                    mu_a = morris_mu[mat[a]] if method[a] == SPH else morris_mu[mat[b]]
+                    mu_b = morris_mu[mat[b]] if method[b] == SPH else morris_mu[mat[a]]
+                    kv = (mu_a + mu_b) * fr * r2 / (rho[a] * rho[b] * (r2 + eps2))
+                    # vg is v on fluid rows and the ghost velocity on walls
+                    wv0 = kv * (vg[a, 0] - vg[b, 0])
+                    wv1 = kv * (vg[a, 1] - vg[b, 1]) if dim > 1 else 0.0
+                    wv2 = kv * (vg[a, 2] - vg[b, 2]) if dim > 2 else 0.0
+                    if to_a:
+                        acc[a, 0] += mb * wv0
+                        if dim > 1:
+                            acc[a, 1] += mb * wv1
+                        if dim > 2:
+                            acc[a, 2] += mb * wv2
+                    if to_b:
+                        acc[b, 0] -= ma * wv0
+                        if dim > 1:
+                            acc[b, 1] -= ma * wv1
+                        if dim > 2:
+                            acc[b, 2] -= ma * wv2
             if corr and mat[a] == mat[b]:
                 # the stress acts through the corrected gradients (added below)
                 t0 = -pi

@@ -1,7 +1,8 @@
 """Dummy-particle walls of SPH fluids (Adami, Hu & Adams 2012, eq. 27): the wall particles'
 pressure extrapolated from the fluid with the hydrostatic correction, their density from the
-inverse Tait law, and the ghost velocity used in the viscous stress (no-slip: -v~, free
-slip: +v~). Part of the SPH kernels (`kernels.sph`)."""
+inverse Tait law, their viscous stress extrapolated likewise, and the ghost velocity used in
+the viscous terms (eq. 23, no-slip: 2 v_wall - v~, free slip: +v~). Part of the SPH kernels
+(`kernels.sph`)."""
 import numpy as np
 
 from ..jit import njit
@@ -14,13 +15,19 @@ def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, inde
                mtypes, mparams, gravity, no_slip, vg):
     """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
     p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
-    rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I; the ghost
-    velocity vg_w = -v~ (no-slip) or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf.
+    rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I + tau~ with
+    tau~ = sum_f dev(sigma_f) W_wf / sum_f W_wf the fluid's viscous stress extrapolated
+    (no-slip walls; zero for inviscid fluids and for a viscosity that acts pairwise, whose
+    stress has no deviator: without it a fluid row next to the wall misses the wall side of
+    its kernel sum of the shear stress, and a viscous flow slips along the wall); the ghost
+    velocity vg_w = 2 v_w - v~ (no-slip, v_w the wall's own velocity: a lid or a moving wall)
+    or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf.
     Over half neighbour lists (each pair once), the sums gathered for the wall end of every
     wall-fluid pair; a halo wall is left to its owner (then refreshed in the halo)."""
     sw = np.zeros(n_query)
     ps = np.zeros(n_query)
     vt = np.zeros((n_query, 3))
+    tau = np.zeros((n_query, 3, 3))
     for a in range(n_query):
         wa = method[a] == WALL
         for k in range(start[a], start[a + 1]):
@@ -45,6 +52,10 @@ def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, inde
             sw[w] += W
             for d in range(dim):
                 vt[w, d] += v[f, d] * W
+            if no_slip:
+                for i in range(3):
+                    for j in range(3):
+                        tau[w, i, j] += (sigma[f, i, j] + (pf if i == j else 0.0)) * W
     sgn = -1.0 if no_slip else 1.0
     for w in range(n_query):
         if method[w] != WALL:
@@ -55,8 +66,9 @@ def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, inde
         if ratio < 1e-3:
             ratio = 1e-3
         rho[w] = mparams[mi, 2] * ratio ** (1.0 / mparams[mi, 1])
+        inv = 1.0 / sw[w] if sw[w] > 0.0 else 0.0
         for i in range(3):
             for j in range(3):
-                sigma[w, i, j] = -p if i == j else 0.0
+                sigma[w, i, j] = tau[w, i, j] * inv - (p if i == j else 0.0)
         for d in range(dim):
-            vg[w, d] = sgn * vt[w, d] / sw[w] if sw[w] > 0.0 else 0.0
+            vg[w, d] = sgn * vt[w, d] * inv + (2.0 * v[w, d] if no_slip else 0.0)

@@ -83,7 +83,15 @@ class SPHStage:
         from ..materials.codes import TAIT_FLUID
 
         mtypes, mparams = materials
-        self.want_L = not all(mtypes[i] == TAIT_FLUID and mparams[i, 3] == 0.0
+        # a fluid's viscosity acts pairwise (Morris et al. 1997, kernels/sph.py) or through
+        # its stress: mu per material where it is pairwise, else 0; None if no fluid is
+        pairwise = [mtypes[i] == TAIT_FLUID and spec.laminar == "morris"
+                    for i in range(len(mtypes))]
+        self.morris_mu = (np.array([mparams[i, 3] if pairwise[i] else 0.0
+                                    for i in range(len(mtypes))])
+                          if any(pairwise[i] and mparams[i, 3] > 0.0
+                                 for i in range(len(mtypes))) else None)
+        self.want_L = not all(mtypes[i] == TAIT_FLUID and (mparams[i, 3] == 0.0 or pairwise[i])
                               for i in range(len(mtypes)))
         self.integrator = spec.integrator
         self.mtypes, self.mparams = materials
@@ -116,6 +124,9 @@ class SPHStage:
                                    * np.sqrt(mparams[i, 0] * mparams[i, 1] / mparams[i, 2])
                                    if mtypes[i] == TAIT_FLUID else 0.0
                                    for i in range(len(mtypes))])
+        # walls that move with their velocity (bodies[].moving), by body index
+        self.moving_walls = np.array([i for i, b in enumerate(case.bodies) if b.moving],
+                                     np.int32)
         self.lo = np.array(case.domain[0], float)
         self.hi = np.array(case.domain[1], float)
         self.start = np.zeros(1, np.int64)
@@ -329,7 +340,7 @@ class SPHStage:
                       p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
                       "fsi" in p, self.corr_tag, self._B(), self.fluid,
                       p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)),
-                      *self._diffusion())
+                      *self._diffusion(), self.morris_mu)
             if self.hourglass > 0.0:
                 hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                                  p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),
@@ -346,7 +357,8 @@ class SPHStage:
         with self.timers.phase("sph"):
             return sph_stress(n, p["method"], p["mat"], p["rho"], p["F"], p["L"], dt,
                               mstate_in, self._mstate(n), self.mtypes, self.mparams,
-                              p["sigma"], p["vol"], p["mass"], self.spec.pressure_min)
+                              p["sigma"], p["vol"], p["mass"], self.spec.pressure_min,
+                              np.zeros(0) if self.morris_mu is None else self.morris_mu)
 
     def hydrostatic_start(self):
         """Fluid bodies start at rest in the hydrostatic state below their top, along g
@@ -458,6 +470,9 @@ class SPHStage:
                     break
             if bad < 0:
                 self.evaluate()  # rates at the new state start the next step
+        if len(self.moving_walls):  # prescribed motion: x += dt v_wall, after the fluid's
+            moving = np.isin(p["body"][:n], self.moving_walls)
+            p["x"][:n][moving] += dt * p["v"][:n][moving]
         if bad < 0:
             bad = first_outside(self.dim, n, p["x"], self.lo, self.hi)
         return bad
