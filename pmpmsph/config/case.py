@@ -78,6 +78,8 @@ class SPHSpec:
                                        # (kernels/sph_hourglass.py; 0: off)
     damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
     density_diffusion: float = 0.1     # fluids: delta of delta-SPH (Antuono 2010; 0: off)
+    shifting: float = 0.0              # fluids: A of particle shifting D = A h |v| dt
+                                       # (Lind et al. 2012; 0: off; kernels/sph_shifting.py)
     wall_no_slip: bool = True          # dummy walls: no-slip or free slip
     pressure_min: float = float("-inf")  # fluids: floor of the pressure (0: no tension)
     hydrostatic: bool = False          # fluids start at the hydrostatic density

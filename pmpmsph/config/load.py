@@ -265,6 +265,9 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         # delta of the delta-SPH density diffusion of fluids (kernels/sph_density.py);
         # 0.1 is Antuono et al.'s (2010) value, 0 switches it off
         density_diffusion=t.number("density_diffusion", 0.1, min=0.0, max=1.0),
+        # A of particle shifting (kernels/sph_shifting.py), off by default; Skillen et al.
+        # (2013) use 2: beyond 10 a particle would move about its spacing a step
+        shifting=t.number("shifting", 0.0, min=0.0, max=10.0),
         wall_no_slip=walls == "no_slip",
         pressure_min=t.number("pressure_min", float("-inf")),
         hydrostatic=t.boolean("hydrostatic", False))

@@ -33,6 +33,7 @@ from ..kernels.sph import (
 from ..kernels.sph_artificial_stress import artificial_stress
 from ..kernels.sph_correction import correction_matrices
 from ..kernels.sph_density import density_gradient
+from ..kernels.sph_shifting import shift_positions, shifting_state
 from ..kernels.sph_hourglass import hourglass_fit, hourglass_forces
 from ..kernels.sph_integrate import (
     add_scaled,
@@ -56,12 +57,19 @@ HALO_MARGIN = 0.5
 SKIN = 0.25
 
 
-def diffusing_fluids(case):
+def shifting_fluids(case):
+    """Whether the scene's SPH fluids are shifted (`[sph] shifting` > 0, kernels/
+    sph_shifting.py): an updated-Lagrangian scene with a Tait fluid body."""
+    return case.sph.shifting > 0.0 and diffusing_fluids(case, ignore_delta=True)
+
+
+def diffusing_fluids(case, ignore_delta=False):
     """Whether the scene's SPH fluids take the delta-SPH density diffusion: an updated-
     Lagrangian scene with a Tait fluid body (not only walls) and a non-zero delta."""
     from ..materials.codes import TAIT_FLUID
 
-    return (case.sph.formulation == "updated" and case.sph.density_diffusion > 0.0
+    return (case.sph.formulation == "updated"
+            and (ignore_delta or case.sph.density_diffusion > 0.0)
             and any(not b.wall and case.materials[b.material].type_code == TAIT_FLUID
                     for b in case.bodies))
 
@@ -124,6 +132,8 @@ class SPHStage:
                                    * np.sqrt(mparams[i, 0] * mparams[i, 1] / mparams[i, 2])
                                    if mtypes[i] == TAIT_FLUID else 0.0
                                    for i in range(len(mtypes))])
+        # particle shifting: A h of D = A h |v| dt (0: off)
+        self.shift_coef = spec.shifting * self.h if shifting_fluids(case) else 0.0
         # walls that move with their velocity (bodies[].moving), by body index
         self.moving_walls = np.array([i for i, b in enumerate(case.bodies) if b.moving],
                                      np.int32)
@@ -157,6 +167,9 @@ class SPHStage:
             out.append(FieldSpec("B", (3, 3), migrate=False, fill="identity"))
         if diffusing_fluids(case):  # delta-SPH: renormalised density gradients
             out.append(FieldSpec("gradrho", (3,), migrate=False))
+        if shifting_fluids(case):  # particle shifting: grad C and the surface eigenvalue
+            out += [FieldSpec("gradc", (3,), migrate=False), FieldSpec("lam", (), migrate=False),
+                    FieldSpec("gradv", (3, 3), migrate=False)]
         if case.sph.hourglass > 0.0:   # reference positions (set at seeding, build.py)
             out += [FieldSpec("X0", ("dim",), halo=True, output=True),
                     FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
@@ -225,6 +238,25 @@ class SPHStage:
         if self.halo_enabled:
             with self.timers.phase("halo"):
                 self.halo.refresh(("gradrho",))
+
+    def _shifting_state(self):
+        """Particle shifting: grad C and the surface eigenvalue of the owned fluid rows at
+        this evaluation's state (applied at the end of the step, `step`). No-op without."""
+        if self.shift_coef == 0.0:
+            return
+        p = self.p
+        n = p.n_owned
+        self._M = rows_at_least(self._M, n)
+        with self.timers.phase("sph"):
+            vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
+            shifting_state(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"), vg,
+                           p.with_halo("mass"), p.with_halo("rho"), p.with_halo("method"),
+                           p.with_halo("mat"), self.fluid, self.start, self.index, self._M,
+                           p["gradc"], p["lam"], p["gradv"])
+
+    def _gradrho_owned(self):
+        """delta-SPH's density gradients of the owned rows (none without delta-SPH)."""
+        return self.p["gradrho"] if self.dcoef is not None else np.zeros((0, 3))
 
     def _diffusion(self):
         """The sph_rates arguments of delta-SPH (None, None: off)."""
@@ -320,6 +352,7 @@ class SPHStage:
                     self.halo.refresh(("rho", "sigma", "vg"))
         self._correction(halo=True)
         self._density_gradient()
+        self._shifting_state()
         self._hourglass_fit()
         with t.phase("sph"):
             rho, sigma = p.with_halo("rho"), p.with_halo("sigma")
@@ -397,6 +430,10 @@ class SPHStage:
             cayley_update(self.dim_tag, n, p["method"], 0.0, p["rho"], p["F"], p["drho"],
                           p["L"])
             first_outside(self.dim, n, p["x"], self.lo, self.hi)
+            if self.shift_coef > 0.0:
+                shift_positions(self.dim_tag, n, p["method"], p["mat"], self.fluid, p["x"],
+                                p["v"], p["gradc"], p["lam"], p["gradv"], p["rho"],
+                                self._gradrho_owned(), self.shift_coef, 0.0, 1.0)
         finally:
             self.halo_enabled = True
             self.evaluated = False
@@ -470,6 +507,11 @@ class SPHStage:
                     break
             if bad < 0:
                 self.evaluate()  # rates at the new state start the next step
+        if self.shift_coef > 0.0 and bad < 0:
+            with self.timers.phase("integrate"):
+                shift_positions(self.dim_tag, n, p["method"], p["mat"], self.fluid, p["x"],
+                                p["v"], p["gradc"], p["lam"], p["gradv"], p["rho"],
+                                self._gradrho_owned(), self.shift_coef, dt, self.spec.spacing)
         if len(self.moving_walls):  # prescribed motion: x += dt v_wall, after the fluid's
             moving = np.isin(p["body"][:n], self.moving_walls)
             p["x"][:n][moving] += dt * p["v"][:n][moving]

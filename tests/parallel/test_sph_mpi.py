@@ -48,6 +48,24 @@ def test_sph_dam_break_equals_one_rank(walls, balance, axis):
     _compare(dist, sim, ref)
 
 
+def test_sph_dam_break_with_shifting_and_viscosity_equals_one_rank():
+    """delta-SPH (on by default), particle shifting and the Morris viscosity with no-slip
+    walls: the same state on any number of ranks."""
+    dist = world()
+
+    def scene():
+        sc = sph_dam_break(walls="no_slip", balance_every=25, axis="x")
+        sc.data["sph"]["shifting"] = 2.0
+        sc.data["materials"]["water"]["mu"] = 1.0
+        return sc
+
+    sim = scene().simulation(dist=dist)
+    ref = scene().simulation(dist=serial())
+    sim.run(max_steps=600)
+    ref.run(max_steps=600)
+    _compare(dist, sim, ref)
+
+
 @pytest.mark.parametrize("kw", [dict(), dict(force="reference", integrator="verlet"),
                                 dict(eta=0.2, integrator="predictor_corrector"),
                                 dict(deformation="rate")])
