@@ -138,13 +138,17 @@ class Restart:
             self.rebalance()
         self.time = float(head["time"])
         self.step_count = int(head["step"])
-        # A fixed dt comes from the case (so --set time.dt can change it), a CFL dt from the
-        # restored state as at the end of a step: the stored dt may be the last step's, cut
-        # short to end exactly at time.end.
+        # A fixed dt comes from the case (so --set time.dt can change it; the stored one may
+        # be the last step's, cut short to end exactly at time.end); a CFL dt is the stored
+        # one: a checkpoint is written after a step, whose end chose the next dt from state
+        # a restart cannot recompute exactly (the SPH rates of the last evaluation, the MPM
+        # signal speed of the last G2P)
+        if self.sph is not None:
+            self.sph.resume()
         if self.case.time.dt is not None:
             self.dt = self.case.time.dt
         else:
-            self._update_dt()
+            self.dt = float(head["dt"])
         self._next_snapshot_time = float(head["next_snapshot_time"])
         self._last_snapshot_step = -1
         self._last_checkpoint_step = self.step_count

@@ -412,6 +412,19 @@ class SPHStage:
         self.stress(0.0, self._mstate(n).copy())
         self.evaluate()
 
+    def resume(self):
+        """After a restart: rebuild what an evaluation derives (neighbour lists, halo, wall
+        states, gradients) at the restored state, but keep the restored rates and stress.
+        The rates a step starts from are those of the last evaluation before the
+        checkpoint, which for the predictor-corrector was at mid-step: evaluating again at
+        the restored state would give other ones (the velocities of a restarted run then
+        drifted by 1e-5 relative). Collective."""
+        p = self.p
+        kept = {k: p[k].copy() for k in p.fields(migrate=True)}
+        self.initialise()
+        for k, values in kept.items():
+            p[k][:] = values
+
     def warm_up(self):
         """Compile every kernel of this stage on empty arrays (the caller has set the
         particle counts to zero); no halo exchange."""
