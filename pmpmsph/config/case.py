@@ -65,8 +65,9 @@ class SPHSpec:
                                        # correction of Bonet & Lok (kernels/sph.py
                                        # `correction_matrices`; default off, load.py)
     deformation: str = "reference"     # total: F by eq. 8 (reference) or eq. 9 (rate)
-    force: str = "current"             # total: eq. 5 in the current configuration (seed) or
-                                       # in the reference one with P = J sigma F^-T
+    force: str = "reference"           # total: eq. 5 in the reference configuration with
+                                       # P = J sigma F^-T (stable in bending), or in the
+                                       # current one as seed 004 writes it ("current")
     integrator: str = "predictor_corrector"
     av_alpha: float = 1.0              # artificial viscosity (seed 000, eq. 2.7)
     av_beta: float = 1.0

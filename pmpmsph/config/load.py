@@ -255,7 +255,10 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         # (kernels/sph.py `correction_matrices`, off by default)
         correction=t.boolean("correction", formulation == "total"),
         deformation=t.string("deformation", "reference", choices=("reference", "rate")),
-        force=t.string("force", "current", choices=("current", "reference")),
+        # total: eq. 5 in the reference configuration (P = J sigma F^-T, the exact adjoint
+        # of F by eq. 8: energy-consistent, stable in bending) by default; "current" is the
+        # seed's form, kept to reproduce seed 004's figures (kernels/tlsph.py)
+        force=t.string("force", "reference", choices=("current", "reference")),
         integrator=integrator, av_alpha=av_alpha, av_beta=av_beta, laminar=laminar,
         artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),

@@ -7,7 +7,7 @@ import numpy as np
 from ..jit import njit
 from ..materials.tensor import cofactor3
 from .sph import SPH, WALL
-from .sph_kernels import kernel_dwdr
+from .sph_kernels import pair_gradient
 
 
 @njit(inline="always")
@@ -69,7 +69,6 @@ def correction_matrices(dim_tag, kern_tag, h, n_query, x, mass, rho, method, sta
     `M` is scratch of shape (>= n_query, 3, 3)."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
-    h4 = 4.0 * h * h
     need = np.zeros(n_query, np.bool_)
     for a in range(n_query):
         for i in range(3):
@@ -92,14 +91,9 @@ def correction_matrices(dim_tag, kern_tag, h, n_query, x, mass, rho, method, sta
             need_b = b < n_query and need[b]
             if not (need[a] or need_b):
                 continue
-            xab0 = x[a, 0] - x[b, 0]
-            xab1 = x[a, 1] - x[b, 1] if dim > 1 else 0.0
-            xab2 = x[a, 2] - x[b, 2] if dim > 2 else 0.0
-            r2 = xab0 * xab0 + xab1 * xab1 + xab2 * xab2
-            if r2 >= h4 or r2 == 0.0:
+            xab0, xab1, xab2, fr = pair_gradient(kern, dim, x, a, b, h)
+            if fr == 0.0:
                 continue
-            r = np.sqrt(r2)
-            fr = kernel_dwdr(kern, dim, r, h) / r
             # (x_b - x_a) (x) grad_a W_ab = -fr xab (x) xab: the same for both ends
             wa = -mass[b] / rho[a] * fr
             wb = -mass[a] / rho[b] * fr if need_b else 0.0

@@ -19,7 +19,7 @@ import numpy as np
 
 from ..jit import njit
 from .sph import SPH
-from .sph_kernels import kernel_dwdr
+from .sph_kernels import pair_gradient
 
 #: a row whose moment matrix has det M below this keeps the plain sum for its gradient: a
 #: particle with few or collinear neighbours (a splash), whose M cannot be inverted safely;
@@ -36,7 +36,6 @@ def density_gradient(dim_tag, kern_tag, h, n_query, x, mass, rho, method, mat, d
     `M` is scratch of shape (>= n_query, 3, 3); `grad` has a row per owned row."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
-    h4 = 4.0 * h * h
     for a in range(n_query):
         for i in range(3):
             grad[a, i] = 0.0
@@ -49,13 +48,9 @@ def density_gradient(dim_tag, kern_tag, h, n_query, x, mass, rho, method, mat, d
             b = index[k]
             if method[b] != SPH or mat[b] != mat[a]:
                 continue
-            xab0 = x[a, 0] - x[b, 0]
-            xab1 = x[a, 1] - x[b, 1] if dim > 1 else 0.0
-            xab2 = x[a, 2] - x[b, 2] if dim > 2 else 0.0
-            r2 = xab0 * xab0 + xab1 * xab1 + xab2 * xab2
-            if r2 >= h4 or r2 == 0.0:
+            xab0, xab1, xab2, fr = pair_gradient(kern, dim, x, a, b, h)
+            if fr == 0.0:
                 continue
-            fr = kernel_dwdr(kern, dim, np.sqrt(r2), h) / np.sqrt(r2)
             both = b < n_query
             va = mass[a] / rho[a]
             vb = mass[b] / rho[b]

@@ -70,3 +70,18 @@ def kernel_dwdr(kind, dim, r, h):
         return -s * 3.0 * q * t * t
     # d/dq [t^4 (2q + 1)] = -2 t^3 (2q + 1) + 2 t^4 = -5 q t^3
     return -s * 5.0 * q * t * t * t
+
+
+@njit(inline="always")
+def pair_gradient(kind, dim, x, a, b, h):
+    """(x_ab components, fr) of rows a and b: x_ab = x_a - x_b and fr = W'(r) / r, so that
+    grad_a W_ab = fr x_ab; fr = 0 when the pair is outside the support 2h or coincident (the
+    neighbour loops skip it)."""
+    xab0 = x[a, 0] - x[b, 0]
+    xab1 = x[a, 1] - x[b, 1] if dim > 1 else 0.0
+    xab2 = x[a, 2] - x[b, 2] if dim > 2 else 0.0
+    r2 = xab0 * xab0 + xab1 * xab1 + xab2 * xab2
+    if r2 >= 4.0 * h * h or r2 == 0.0:
+        return xab0, xab1, xab2, 0.0
+    r = np.sqrt(r2)
+    return xab0, xab1, xab2, kernel_dwdr(kind, dim, r, h) / r

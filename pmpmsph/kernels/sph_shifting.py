@@ -23,7 +23,7 @@ import numpy as np
 
 from ..jit import njit
 from .sph import MPM, SPH
-from .sph_kernels import kernel_dwdr
+from .sph_kernels import pair_gradient
 
 #: lambda below this: a free-surface particle (Marrone et al. 2010 use 0.2 for the surface
 #: proper and 0.75 for its neighbourhood in their eigenvalue test; Sun et al. 2017 0.55)
@@ -43,7 +43,6 @@ def shifting_state(dim_tag, kern_tag, h, n_query, x, vg, mass, rho, method, mat,
     scratch of shape (>= n_query, 3, 3); rows that do not shift get gradc = 0, lam = 1."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
-    h4 = 4.0 * h * h
     for a in range(n_query):
         lam[a] = 1.0
         for i in range(3):
@@ -58,13 +57,9 @@ def shifting_state(dim_tag, kern_tag, h, n_query, x, vg, mass, rho, method, mat,
             sb = b < n_query and method[b] == SPH and fluid[mat[b]]
             if not (sa or sb) or method[b] == MPM and not sa:
                 continue
-            xab0 = x[a, 0] - x[b, 0]
-            xab1 = x[a, 1] - x[b, 1] if dim > 1 else 0.0
-            xab2 = x[a, 2] - x[b, 2] if dim > 2 else 0.0
-            r2 = xab0 * xab0 + xab1 * xab1 + xab2 * xab2
-            if r2 >= h4 or r2 == 0.0:
+            xab0, xab1, xab2, fr = pair_gradient(kern, dim, x, a, b, h)
+            if fr == 0.0:
                 continue
-            fr = kernel_dwdr(kern, dim, np.sqrt(r2), h) / np.sqrt(r2)
             va = mass[a] / rho[a]
             vb = mass[b] / rho[b]
             for i in range(dim):

@@ -25,16 +25,6 @@ def fields(sim):
     return ("x", "v", "F" if "F" in sim.particles else "J", "sigma", "mass", "vol")
 
 
-@pytest.fixture
-def shared_dir(request):
-    """Rank 0's tmp_path on every rank (only rank 0 asks pytest for one)."""
-    dist = world()
-    local = str(request.getfixturevalue("tmp_path")) if dist.is_root else None
-    path = dist.bcast(local)
-    dist.barrier()
-    return path
-
-
 def by_gid(data):
     order = np.argsort(data["gid"])
     return {k: np.asarray(v)[order] for k, v in data.items()}
