@@ -33,7 +33,9 @@ def density_gradient(dim_tag, kern_tag, h, n_query, x, mass, rho, method, mat, d
     """<grad rho>_a of the owned rows [0, n_query) that diffuse (SPH rows of a material with
     dcoef[mat] > 0), over half neighbour lists (each pair once, both ends), from the SPH
     neighbours of the same material (walls and MPM points take no part in the diffusion).
-    `M` is scratch of shape (>= n_query, 3, 3); `grad` has a row per owned row."""
+    `M` is scratch of shape (>= n_query, 3, 3) (its symmetric part is filled); `grad` has a
+    row per owned row. Row a's sums are kept in scalars over its list and the b ends
+    written as they come (this pass costs a fraction of the rates' pair loop)."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     for a in range(n_query):
@@ -44,6 +46,10 @@ def density_gradient(dim_tag, kern_tag, h, n_query, x, mass, rho, method, mat, d
     for a in range(n_query):
         if method[a] != SPH or dcoef[mat[a]] == 0.0:
             continue
+        va = mass[a] / rho[a]
+        ra = rho[a]
+        g0 = g1 = g2 = 0.0
+        m00 = m01 = m02 = m11 = m12 = m22 = 0.0
         for k in range(start[a], start[a + 1]):
             b = index[k]
             if method[b] != SPH or mat[b] != mat[a]:
@@ -51,22 +57,47 @@ def density_gradient(dim_tag, kern_tag, h, n_query, x, mass, rho, method, mat, d
             xab0, xab1, xab2, fr = pair_gradient(kern, dim, x, a, b, h)
             if fr == 0.0:
                 continue
-            both = b < n_query
-            va = mass[a] / rho[a]
-            vb = mass[b] / rho[b]
-            drab = rho[b] - rho[a]
-            # grad_a W_ab = fr x_ab; grad_b W_ba = -fr x_ab. (x_b - x_a) (x) grad_a W_ab =
-            # -fr x_ab (x) x_ab, and the same at the b end.
-            for i in range(dim):
-                xi = xab0 if i == 0 else (xab1 if i == 1 else xab2)
-                grad[a, i] += vb * drab * fr * xi
-                if both:  # (rho_a - rho_b) grad_b W_ba = drab fr x_ab
-                    grad[b, i] += va * drab * fr * xi
-                for j in range(dim):
-                    xj = xab0 if j == 0 else (xab1 if j == 1 else xab2)
-                    M[a, i, j] -= vb * fr * xi * xj
-                    if both:
-                        M[b, i, j] -= va * fr * xi * xj
+            # grad_a W_ab = fr x_ab, grad_b W_ba = -fr x_ab; (x_b - x_a) (x) grad_a W_ab =
+            # -fr x_ab (x) x_ab at both ends; (rho_a - rho_b) grad_b W_ba = drab fr x_ab
+            wb = mass[b] / rho[b] * fr
+            drab = rho[b] - ra
+            g0 += wb * drab * xab0
+            m00 -= wb * xab0 * xab0
+            if dim > 1:
+                g1 += wb * drab * xab1
+                m01 -= wb * xab0 * xab1
+                m11 -= wb * xab1 * xab1
+            if dim > 2:
+                g2 += wb * drab * xab2
+                m02 -= wb * xab0 * xab2
+                m12 -= wb * xab1 * xab2
+                m22 -= wb * xab2 * xab2
+            if b < n_query:
+                wa = va * fr
+                grad[b, 0] += wa * drab * xab0
+                M[b, 0, 0] -= wa * xab0 * xab0
+                if dim > 1:
+                    grad[b, 1] += wa * drab * xab1
+                    M[b, 0, 1] -= wa * xab0 * xab1
+                    M[b, 1, 1] -= wa * xab1 * xab1
+                if dim > 2:
+                    grad[b, 2] += wa * drab * xab2
+                    M[b, 0, 2] -= wa * xab0 * xab2
+                    M[b, 1, 2] -= wa * xab1 * xab2
+                    M[b, 2, 2] -= wa * xab2 * xab2
+        grad[a, 0] += g0
+        grad[a, 1] += g1
+        grad[a, 2] += g2
+        M[a, 0, 0] += m00
+        M[a, 0, 1] += m01
+        M[a, 0, 2] += m02
+        M[a, 1, 1] += m11
+        M[a, 1, 2] += m12
+        M[a, 2, 2] += m22
+    for a in range(n_query):  # the lower triangle of the symmetric M
+        M[a, 1, 0] = M[a, 0, 1]
+        M[a, 2, 0] = M[a, 0, 2]
+        M[a, 2, 1] = M[a, 1, 2]
     g = np.zeros(3)
     for a in range(n_query):
         if method[a] != SPH or dcoef[mat[a]] == 0.0:
