@@ -158,19 +158,17 @@ class Restart:
         return head
 
     def _agree(self, key, fn, root_only=False):
-        """fn() on every rank (or rank 0, result broadcast); a failure anywhere is a
-        ConfigError(key) on every rank."""
-        out, err = None, None
-        if self.dist.is_root or not root_only:
+        """fn() agreed on by every rank (`Distributor.agree`, place "restart"), any failure
+        of it bad input at `key` (a file that cannot be read or changed)."""
+        def guarded():
             try:
-                out = fn()
-            except Exception as exc:  # noqa: BLE001 - reported as bad input below
-                err = f"cannot use {key} file: {exc}"
-        errs = self.dist.allgather(err)
-        first = next((e for e in errs if e), None)
-        if first:
-            raise ConfigError(key, first)
-        return self.dist.bcast(out) if root_only else out
+                return fn()
+            except ConfigError:
+                raise
+            except Exception as exc:  # noqa: BLE001 - reported as bad input at `key`
+                raise ConfigError(key, f"cannot use {key} file: {exc}") from None
+
+        return self.dist.agree("restart", guarded, root_only=root_only)
 
     def open_restart_output(self, out_dir, overwrite=False):
         """Output of a restarted run (after `restore_checkpoint`): continue particles.h5 and
