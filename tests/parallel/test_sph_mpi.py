@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from mpi_util import assert_equals_one_rank, serial, world
+from pmpmsph.bench.scenes import sph_cavity
 from scenes import sph_bar_1d, sph_dam_break
 
 pytestmark = pytest.mark.mpi
@@ -44,6 +45,41 @@ def test_sph_dam_break_equals_one_rank(walls, balance, axis):
     ref = sph_dam_break(walls=walls).simulation(dist=serial())
     sim.run(max_steps=1000)
     ref.run(max_steps=1000)
+    assert dist.sum(sim.migrated) > 0
+    _compare(dist, sim, ref)
+
+
+def test_sph_cavity_equals_one_rank():
+    """The lid-driven cavity: walls with a velocity, Morris viscosity, delta-SPH."""
+    dist = world()
+
+    def scene():
+        sc = sph_cavity(n=20, end=1.0)
+        sc.data["parallel"] = dict(axis="x", balance_every=25)
+        return sc
+
+    sim = scene().simulation(dist=dist)
+    ref = scene().simulation(dist=serial())
+    sim.run(max_steps=300)
+    ref.run(max_steps=300)
+    _compare(dist, sim, ref)
+
+
+def test_sph_moving_wall_equals_one_rank():
+    """A wall body that moves with its velocity across the slab faces (bodies[].moving)."""
+    dist = world()
+
+    def scene():
+        sc = sph_cavity(n=20, end=1.0)
+        sc.data["parallel"] = dict(axis="x", balance_every=0)
+        sc.data["domain"]["max"][0] = 2.0
+        sc.data["bodies"][-1]["moving"] = True  # the lid slides off to the right
+        return sc
+
+    sim = scene().simulation(dist=dist)
+    ref = scene().simulation(dist=serial())
+    sim.run(max_steps=300)
+    ref.run(max_steps=300)
     assert dist.sum(sim.migrated) > 0
     _compare(dist, sim, ref)
 
