@@ -136,7 +136,18 @@ class Simulation(Restart, Rebalancing):
             spec = GridSpec(tuple(lo), tuple((hi - lo) / cells), tuple(int(c) for c in cells))
         if spec is None:
             return None
-        return Decomposition(self.dist, spec, axis=case.parallel.axis,
+        axis = case.parallel.axis
+        if case.periodic and self.dist.size > 1:  # the slabs are cut across the periods
+            if axis in case.periodic:
+                raise ConfigError("parallel.axis", "the slabs cannot be cut along a periodic "
+                                  "axis in this version: choose another axis")
+            if axis is None:
+                free = [a for a in range(case.dim) if a not in case.periodic]
+                if not free:
+                    raise ConfigError("domain.periodic", "with every axis periodic the scene "
+                                      "runs on one rank in this version")
+                axis = max(free, key=lambda a: spec.cells[a])
+        return Decomposition(self.dist, spec, axis=axis,
                              key="grid.cells" if case.grid else "domain")
 
     # -- time step --------------------------------------------------------------------------

@@ -204,3 +204,41 @@ def sph_cavity(n=30, end=20.0, laminar="morris", reynolds=100.0, c0=10.0):
     sc.body(name="lid", method="sph", wall=True, material="water", shape="box",
             min=[-w, 1], max=[1 + w, 1 + w], spacing=dp, velocity=[1.0, 0.0])
     return sc
+
+
+def sph_couette(n=20, nu=0.5, end=2.5, laminar="morris"):
+    """Couette flow start-up: a fluid layer of unit depth between a wall at rest (y = 0) and
+    a wall sliding at U = 1 (y = 1), periodic along x over 16 spacings (no ends), from rest;
+    Tait fluid rho0 = 1000, c0 = 10 U, kinematic viscosity `nu` (Re = U H / nu = 2 for 0.5;
+    the flow is steady after about H^2 / (pi^2 nu) x 10 = 2 s), Wendland C2 at h = 1.3
+    spacings, no artificial viscosity. Exact: `couette_exact`."""
+    dp = 1.0 / n
+    w = 4 * dp
+    length = 16 * dp
+    rho0 = 1000.0
+    sc = Scene(2, domain=dict(min=[0.0, -w - dp], max=[length, 1 + w + dp], periodic=["x"]),
+               time=dict(end=end, cfl=0.25),
+               sph=dict(kernel="wendland", h_factor=1.3,
+                        viscosity=dict(alpha=0.0, beta=0.0, laminar=laminar)),
+               parallel=dict(balance_every=0))
+    sc.material("oil", model="tait", rho=rho0, kappa=100.0 * rho0 / 7.0, gamma=7.0,
+                mu=rho0 * nu)
+    sc.body(name="fluid", method="sph", material="oil", shape="box", min=[0, 0],
+            max=[length, 1], spacing=dp)
+    sc.body(name="floor", method="sph", wall=True, material="oil", shape="box",
+            min=[0, -w], max=[length, 0], spacing=dp)
+    sc.body(name="lid", method="sph", wall=True, material="oil", shape="box",
+            min=[0, 1], max=[length, 1 + w], spacing=dp, velocity=[1.0, 0.0])
+    return sc
+
+
+def couette_exact(y, t, nu, terms=400):
+    """u / U of the Couette start-up between y = 0 (at rest) and y = 1 (sliding at U), from
+    rest: y - 2/pi sum_k (-1)^(k+1)/k sin(k pi y) exp(-k^2 pi^2 nu t) (separation of
+    variables; the series of y itself at t = 0)."""
+    import numpy as np
+
+    k = np.arange(1, terms + 1)[:, None]
+    y = np.asarray(y, float)[None, :]
+    return (y - 2.0 / np.pi * np.sum((-1.0) ** (k + 1) / k * np.sin(k * np.pi * y)
+                                     * np.exp(-(k * np.pi) ** 2 * nu * t), axis=0))[0]

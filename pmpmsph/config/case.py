@@ -228,6 +228,7 @@ class Case:
     parallel: ParallelSpec = field(default_factory=ParallelSpec)
     sph: Optional[SPHSpec] = None
     domain: Optional[tuple] = None  # (min, max) box particles must stay in (grid box if any)
+    periodic: tuple = ()            # axes (0, 1, 2) along which [domain] is periodic (SPH)
     regions: tuple = ()             # MethodRegion, applied in order over the body methods
     coupling: CouplingSpec = field(default_factory=CouplingSpec)
     text: str = ""

@@ -286,13 +286,43 @@ def _method_region(t, dim):
 
 
 def _domain(t, dim):
+    """(min, max) and the periodic axes of the [domain] box of an SPH scene."""
     lo = t.vector("min", dim)
     hi = t.vector("max", dim)
     for a in range(dim):
         if hi[a] <= lo[a]:
             raise ConfigError(t.key("max") + f"[{a}]", "max must exceed min")
+    names = t.raw("periodic", [])
+    axes = "xyz"[:dim]
+    if (not isinstance(names, list) or not all(isinstance(n, str) and n in axes for n in names)
+            or len(set(names)) != len(names)):
+        raise ConfigError(t.key("periodic"), f"expected a list of distinct axes among "
+                          f"{', '.join(axes)}, got {names!r}")
     t.finish()
-    return (lo, hi)
+    return (lo, hi), tuple(sorted(axes.index(n) for n in names))
+
+
+def _check_periodic(periodic, domain, bodies, grid, key="domain.periodic"):
+    """A periodic axis of an SPH scene: no grid (MPM and coupled scenes are not periodic
+    yet), and every body that spans the period fills it with a whole number of spacings (a
+    lattice that does not tile the period leaves a seam of wrong density)."""
+    if not periodic:
+        return
+    if grid is not None:
+        raise ConfigError(key, "periodic axes are for SPH scenes (a [domain], no [grid]) in "
+                          "this version")
+    lo, hi = domain
+    for axis in periodic:
+        length = hi[axis] - lo[axis]
+        for i, b in enumerate(bodies):
+            blo, bhi = b.geometry.bbox()
+            if b.spacing is None or bhi[axis] - blo[axis] < length - 1e-9 * length:
+                continue
+            cells = length / b.spacing[axis]
+            if abs(cells - round(cells)) > 1e-6:
+                raise ConfigError(key, f"the period {length:g} along {'xyz'[axis]} is "
+                                  f"{cells:.4g} spacings of bodies[{i}] ({b.spacing[axis]:g}): "
+                                  "make it a whole number")
 
 
 def _case_name(name):
@@ -388,8 +418,19 @@ def case_from_dict(data, name="case", text=""):
                           "SPH kicks with the MPM step: it needs sph.integrator = \"verlet\" "
                           "and the updated formulation")
     dom_t = root.sub("domain", None)
+    periodic = ()
     if dom_t is not None:
-        domain = _domain(dom_t, dim)
+        domain, periodic = _domain(dom_t, dim)
+        _check_periodic(periodic, domain, bodies, grid)
+        if periodic and sph is not None and sph.formulation == "total":
+            raise ConfigError("domain.periodic", "total-Lagrangian SPH keeps its reference "
+                              "neighbours: periodic axes are for updated-Lagrangian SPH")
+        for axis in periodic:  # images of images would meet: 3 cells of the support 2h
+            length = domain[1][axis] - domain[0][axis]
+            if sph is not None and length < 6.0 * sph.h:
+                raise ConfigError("domain.periodic", f"the period {length:g} along "
+                                  f"{'xyz'[axis]} is shorter than 6 h = {6.0 * sph.h:g} "
+                                  "(three kernel supports): lengthen the domain")
     elif grid is not None:
         domain = (grid.origin, grid.upper)
     elif has_sph:
@@ -452,7 +493,8 @@ def case_from_dict(data, name="case", text=""):
     case = Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
                 boundaries=boundaries, loads=loads, prescribed=prescribed, gravity=gravity,
                 time=TimeSpec(end, dt, cfl, max_steps), output=output, parallel=parallel, sph=sph,
-                domain=domain, regions=regions, coupling=coupling, text=text)
+                domain=domain, periodic=periodic, regions=regions, coupling=coupling,
+                text=text)
     if mpm.deformation == "J" and not case.tracks_J_only:
         raise ConfigError("mpm.deformation", "J alone describes fluids only: it needs a pure-MPM "
                           "scene (no SPH), a shape other than cpdi and only fluid materials")

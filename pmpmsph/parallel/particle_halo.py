@@ -7,6 +7,7 @@ particle of the neighbour within `width` of the face can interact with our parti
 """
 import numpy as np
 
+from ..errors import ConfigError
 from .migration import _pack, _unpack
 
 TAG_HALO_COUNT = 31
@@ -15,10 +16,23 @@ TAG_HALO_REFRESH = 33
 
 
 class ParticleHalo:
-    def __init__(self, decomposition, particles, width, check=True):
+    """`periodic`: (axis, lo, length) of each periodic axis of the domain that the slabs do
+    not cut: after the neighbours' rows, the rows (owned and halo) within `width` of either
+    end of such an axis are copied to the other end as images, shifted by the period, axis
+    after axis (so a corner of two periodic axes gets its diagonal images too); `refresh`
+    copies them again from the same rows."""
+
+    def __init__(self, decomposition, particles, width, check=True, periodic=()):
         self.dec = decomposition
         self.particles = particles
         self.width = float(width)
+        self.periodic = tuple(periodic)
+        for axis, _, length in self.periodic:
+            if 2.0 * self.width > length:  # an image would be its own neighbour's image
+                raise ConfigError("domain.periodic", f"the period {length:g} along "
+                                  f"{'xyz'[axis]} is shorter than twice the halo width "
+                                  f"{self.width:g} (2.75 h): lengthen the domain")
+        self._images = []  # (source rows, first image row, axis, shift) of the last exchange
         thinnest = np.diff(decomposition.faces).min() * decomposition.dx
         if check and decomposition.size > 1 and self.width > thinnest:
             # a halo must come from the two neighbours only
@@ -41,11 +55,42 @@ class ParticleHalo:
         return out
 
     def exchange(self):
-        """Rebuild the halo rows; returns the number of halo particles received."""
+        """Rebuild the halo rows (the neighbours', then the periodic images); returns how
+        many halo rows there are."""
         p = self.particles
         p.drop_halo()
-        if self.dec.size == 1:
-            return 0
+        if self.dec.size > 1:
+            self._exchange_neighbours()
+        self._add_images()
+        return p.n_total - p.n_owned
+
+    def _add_images(self):
+        p = self.particles
+        self._images = []
+        for axis, lo, length in self.periodic:
+            xa = p.arrays["x"][: p.n_total, axis]
+            low = np.nonzero(xa < lo + self.width)[0]
+            high = np.nonzero(xa >= lo + length - self.width)[0]
+            for rows, shift in ((low, length), (high, -length)):
+                if not len(rows):
+                    continue
+                values = {name: p.arrays[name][rows] for name in self.names}
+                values["x"] = values["x"].copy()
+                values["x"][:, axis] += shift
+                self._images.append((rows, p.n_total, axis, shift))
+                p.append_halo(values)
+
+    def _refresh_images(self, names):
+        p = self.particles
+        for rows, first, axis, shift in self._images:
+            for name in names:
+                arr = p.arrays[name]
+                arr[first:first + len(rows)] = arr[rows]
+                if name == "x":
+                    arr[first:first + len(rows), axis] += shift
+
+    def _exchange_neighbours(self):
+        p = self.particles
         from mpi4py import MPI
 
         comm = self.dec.dist.comm
@@ -79,9 +124,14 @@ class ParticleHalo:
 
     def refresh(self, names):
         """Re-send fields `names` of the particles of the last exchange into the same halo
-        rows (after the owners updated them, e.g. the wall pressures); same plan, no search."""
-        if self.dec.size == 1 or self._plan is None:
-            return
+        rows (after the owners updated them, e.g. the wall pressures); same plan, no search.
+        The periodic images are copied again after the neighbours' rows (which they may
+        copy)."""
+        if self.dec.size > 1 and self._plan is not None:
+            self._refresh_neighbours(names)
+        self._refresh_images(names)
+
+    def _refresh_neighbours(self, names):
         from mpi4py import MPI
 
         p = self.particles

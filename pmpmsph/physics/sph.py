@@ -185,8 +185,10 @@ class SPHStage:
         from ..parallel.particle_halo import ParticleHalo
 
         self.dec = decomposition
+        lo, hi = self.case.domain
+        periodic = [(a, lo[a], hi[a] - lo[a]) for a in self.case.periodic]
         self.halo = ParticleHalo(decomposition, self.p,
-                                 (SUPPORT + SKIN + HALO_MARGIN) * self.h)
+                                 (SUPPORT + SKIN + HALO_MARGIN) * self.h, periodic=periodic)
         self.invalidate()
 
     def invalidate(self):
@@ -528,6 +530,10 @@ class SPHStage:
         if len(self.moving_walls):  # prescribed motion: x += dt v_wall, after the fluid's
             moving = np.isin(p["body"][:n], self.moving_walls)
             p["x"][:n][moving] += dt * p["v"][:n][moving]
+        for axis in self.case.periodic:  # back into the period (images do the rest)
+            length = self.hi[axis] - self.lo[axis]
+            xa = p["x"][:n, axis]
+            xa[:] = self.lo[axis] + np.mod(xa - self.lo[axis], length)
         if bad < 0:
             bad = first_outside(self.dim, n, p["x"], self.lo, self.hi)
         return bad

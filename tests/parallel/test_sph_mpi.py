@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from mpi_util import assert_equals_one_rank, serial, world
-from pmpmsph.bench.scenes import sph_cavity
+from pmpmsph.bench.scenes import sph_cavity, sph_couette
 from scenes import sph_bar_1d, sph_dam_break
 
 pytestmark = pytest.mark.mpi
@@ -81,6 +81,17 @@ def test_sph_moving_wall_equals_one_rank():
     sim.run(max_steps=300)
     ref.run(max_steps=300)
     assert dist.sum(sim.migrated) > 0
+    _compare(dist, sim, ref)
+
+
+def test_sph_periodic_couette_equals_one_rank():
+    """Periodic along x (images inside each rank), slabs cut along y across the layer."""
+    dist = world()
+    sim = sph_couette(n=20, end=1.0).simulation(dist=dist)
+    ref = sph_couette(n=20, end=1.0).simulation(dist=serial())
+    assert sim.decomposition.axis == 1
+    sim.run(max_steps=300)
+    ref.run(max_steps=300)
     _compare(dist, sim, ref)
 
 
