@@ -49,26 +49,28 @@ def test_sph_dam_break_equals_one_rank(walls, balance, axis):
     _compare(dist, sim, ref)
 
 
+def _on_both(scene, steps):
+    """The scene run `steps` steps on all ranks and on one; returns (dist, sim, ref)."""
+    dist = world()
+    sim = scene().simulation(dist=dist)
+    ref = scene().simulation(dist=serial())
+    sim.run(max_steps=steps)
+    ref.run(max_steps=steps)
+    return dist, sim, ref
+
+
 def test_sph_cavity_equals_one_rank():
     """The lid-driven cavity: walls with a velocity, Morris viscosity, delta-SPH."""
-    dist = world()
-
     def scene():
         sc = sph_cavity(n=20, end=1.0)
         sc.data["parallel"] = dict(axis="x", balance_every=25)
         return sc
 
-    sim = scene().simulation(dist=dist)
-    ref = scene().simulation(dist=serial())
-    sim.run(max_steps=300)
-    ref.run(max_steps=300)
-    _compare(dist, sim, ref)
+    _compare(*_on_both(scene, 300))
 
 
 def test_sph_moving_wall_equals_one_rank():
     """A wall body that moves with its velocity across the slab faces (bodies[].moving)."""
-    dist = world()
-
     def scene():
         sc = sph_cavity(n=20, end=1.0)
         sc.data["parallel"] = dict(axis="x", balance_every=0)
@@ -76,41 +78,28 @@ def test_sph_moving_wall_equals_one_rank():
         sc.data["bodies"][-1]["moving"] = True  # the lid slides off to the right
         return sc
 
-    sim = scene().simulation(dist=dist)
-    ref = scene().simulation(dist=serial())
-    sim.run(max_steps=300)
-    ref.run(max_steps=300)
+    dist, sim, ref = _on_both(scene, 300)
     assert dist.sum(sim.migrated) > 0
     _compare(dist, sim, ref)
 
 
 def test_sph_periodic_couette_equals_one_rank():
     """Periodic along x (images inside each rank), slabs cut along y across the layer."""
-    dist = world()
-    sim = sph_couette(n=20, end=1.0).simulation(dist=dist)
-    ref = sph_couette(n=20, end=1.0).simulation(dist=serial())
+    dist, sim, ref = _on_both(lambda: sph_couette(n=20, end=1.0), 300)
     assert sim.decomposition.axis == 1
-    sim.run(max_steps=300)
-    ref.run(max_steps=300)
     _compare(dist, sim, ref)
 
 
 def test_sph_dam_break_with_shifting_and_viscosity_equals_one_rank():
     """delta-SPH (on by default), particle shifting and the Morris viscosity with no-slip
     walls: the same state on any number of ranks."""
-    dist = world()
-
     def scene():
         sc = sph_dam_break(walls="no_slip", balance_every=25, axis="x")
         sc.data["sph"]["shifting"] = 2.0
         sc.data["materials"]["water"]["mu"] = 1.0
         return sc
 
-    sim = scene().simulation(dist=dist)
-    ref = scene().simulation(dist=serial())
-    sim.run(max_steps=600)
-    ref.run(max_steps=600)
-    _compare(dist, sim, ref)
+    _compare(*_on_both(scene, 600))
 
 
 @pytest.mark.parametrize("kw", [dict(), dict(force="reference", integrator="verlet"),
