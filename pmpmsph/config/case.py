@@ -8,6 +8,8 @@ from typing import Optional
 
 SHAPES = ("linear", "gimp", "quadratic", "cubic", "cpdi")
 TRANSFERS = ("usl", "usf", "musl")
+#: how G2P hands the grid velocity back to the particles (kernels/mpm.py, mpm_affine.py)
+VELOCITY_UPDATES = ("flip", "apic", "mls")
 CONTACTS = ("single", "multi")
 METHODS = ("mpm", "sph")
 BC_KINDS = ("fixed", "slip", "friction")
@@ -41,6 +43,8 @@ class MPMSpec:
     shape: str = "linear"
     transfer: str = "usl"
     flip: float = 1.0          # 1 = FLIP (thesis eq. 80), 0 = PIC
+    velocity_update: str = "flip"  # the PIC/FLIP blend above, APIC (Jiang et al. 2015) or
+    # MLS-MPM (Hu et al. 2018; USL with a B-spline shape)
     damping: float = 0.0       # alpha_d of thesis eq. 76
     mass_cutoff: float = 1e-10  # nodes lighter than this get no velocity (thesis listing 2)
     contact: str = "single"    # single velocity field, or one per body (Bardenhagen)

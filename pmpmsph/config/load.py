@@ -14,8 +14,8 @@ from ..materials import material_from_table
 from ..scene.geometry import Box, Disc, Polygon
 from ..scene.mesh import MeshGeometry, mesh_geometry
 from .case import (CONTACTS, METHODS, SHAPES, SPH_FORMULATIONS, SPH_INTEGRATORS, SPH_KERNELS,
-                   TRANSFERS, BodySpec, Case, CouplingSpec, GridSpec, MethodRegion, MPMSpec,
-                   OutputSpec, ParallelSpec, SPHSpec, TimeSpec)
+                   TRANSFERS, VELOCITY_UPDATES, BodySpec, Case, CouplingSpec, GridSpec,
+                   MethodRegion, MPMSpec, OutputSpec, ParallelSpec, SPHSpec, TimeSpec)
 from .conditions import _boundary, _load, _prescribed, _voigt_len
 from .table import Table, is_finite
 
@@ -362,6 +362,7 @@ def case_from_dict(data, name="case", text=""):
         shape=mpm_t.string("shape", "linear", choices=SHAPES),
         transfer=mpm_t.string("transfer", "usl", choices=TRANSFERS),
         flip=mpm_t.number("flip", 1.0, min=0.0, max=1.0),
+        velocity_update=mpm_t.string("velocity_update", "flip", choices=VELOCITY_UPDATES),
         damping=mpm_t.number("damping", 0.0, min=0.0),
         mass_cutoff=mpm_t.number("mass_cutoff", 1e-10, min=0.0),
         contact=mpm_t.string("contact", "single", choices=CONTACTS),
@@ -370,6 +371,17 @@ def case_from_dict(data, name="case", text=""):
         cpdi_reach=mpm_t.number("cpdi_reach", 2, integer=True, min=1, max=8),
         deformation=mpm_t.string("deformation", "auto", choices=("auto", "F", "J")),
     )
+    if mpm.velocity_update != "flip" and mpm_t.has("flip"):
+        raise ConfigError(mpm_t.key("flip"), "applies to velocity_update = \"flip\" only "
+                          f"(the {mpm.velocity_update} transfer has no FLIP increment)")
+    if mpm.velocity_update == "mls":
+        if mpm.shape not in ("quadratic", "cubic"):
+            raise ConfigError(mpm_t.key("velocity_update"), "\"mls\" needs shape = "
+                              f"\"quadratic\" or \"cubic\" (its gradient is D^-1 N (x_I - x_p) "
+                              f"of a B-spline), not {mpm.shape!r}; \"apic\" takes any shape")
+        if mpm.transfer != "usl":
+            raise ConfigError(mpm_t.key("velocity_update"), "\"mls\" is an update-stress-last "
+                              f"scheme: it needs transfer = \"usl\", not {mpm.transfer!r}")
     if mpm_t.has("cpdi_reach") and mpm.shape != "cpdi":
         raise ConfigError(mpm_t.key("cpdi_reach"), "applies to shape = \"cpdi\" only")
     mpm_t.finish()

@@ -258,7 +258,7 @@ def mirror_grid_bc(dim, outside, inside, kind, normal, gvel, gdv):
 @njit
 def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield, mat,
         mtypes, mparams, mstate, prestress, gvel, gdv, origin, offset, inv_dx, strides, dt,
-        flip, lo, hi, max_reach, want_signal):
+        flip, lo, hi, max_reach, want_signal, Lp=None):
     """Gather from the grid (eqs. 80-86) for every particle.
 
     Kinematics: v_p <- flip (v_p + sum N dv) + (1 - flip) sum N v_new (FLIP/PIC blend),
@@ -279,6 +279,8 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
     `mat_tag` fixes the material type at compile time when all particles share it
     (`material_tag`); `pic_tag` = (0,) when flip = 0 (PIC: the increments are not gathered
     and v_p is sum N v_new itself), () otherwise, also fixed at compile time.
+    `Lp` (n, 3, 3), when given with `gdv = None`, is each particle's velocity gradient,
+    gathered already (`kernels.mpm_affine.g2p_affine`): the grid is not read.
     """
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
@@ -300,6 +302,9 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
     hi1 = hi[1] if dim > 1 else 0.0
     lo2 = lo[2] if dim > 2 else 0.0
     hi2 = hi[2] if dim > 2 else 0.0
+    corners = n_corners(kind_tag, dim)
+    if Lp is not None:  # (pruned at compile time when None)
+        corners = 0
     for p in range(n):
         if pfield is not None:
             fld = pfield[p]
@@ -308,7 +313,7 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
         vp0 = vp1 = vp2 = 0.0  # sum N v_new
         dv0 = dv1 = dv2 = 0.0  # sum N dv
         L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
-        for c in range(n_corners(kind_tag, dim)):
+        for c in range(corners):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, Fdom, dom, p, c, origin, inv_dx, st, off, nax)
             # sum factorisation (see `p2g`): the sums over the last axis first, then the
@@ -402,15 +407,20 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
             if not inside and bad < 0:
                 bad = p
         if F is not None:
-            L[0, 0] = L00 * inv_dx
-            L[0, 1] = L01 * inv_dx
-            L[0, 2] = L02 * inv_dx
-            L[1, 0] = L10 * inv_dx
-            L[1, 1] = L11 * inv_dx
-            L[1, 2] = L12 * inv_dx
-            L[2, 0] = L20 * inv_dx
-            L[2, 1] = L21 * inv_dx
-            L[2, 2] = L22 * inv_dx
+            if Lp is None:
+                L[0, 0] = L00 * inv_dx
+                L[0, 1] = L01 * inv_dx
+                L[0, 2] = L02 * inv_dx
+                L[1, 0] = L10 * inv_dx
+                L[1, 1] = L11 * inv_dx
+                L[1, 2] = L12 * inv_dx
+                L[2, 0] = L20 * inv_dx
+                L[2, 1] = L21 * inv_dx
+                L[2, 2] = L22 * inv_dx
+            else:  # gathered already (an affine transfer)
+                for a in range(3):
+                    for b in range(3):
+                        L[a, b] = Lp[p, a, b]
             J = advance(F, p, dim, dt, L, Fn)  # eq. 82 (or J alone, for fluids)
             vol[p] = J * vol0[p]
             if not (J > 0.0) and bad < 0:

@@ -10,6 +10,8 @@ In a coupled scene the rows [n_stress, n_p2g) are SPH solid particles in their o
 fields (`physics.sph_solid`): they scatter mass, momentum and their SPH force (no stress), and
 take back the velocity change the contact of the force solve made to their field.
 PIC-USL without damping scatters p + dt f in one go (`fold_force`, mpm88's form).
+`mpm.velocity_update` = "apic" / "mls": the passes that move the particles hand them v_p and
+the affine matrix C_p (kernels/mpm_affine.py), and P2G scatters m_p (v_p + C_p (x_I - x_p)).
 """
 from contextlib import contextmanager
 
@@ -18,6 +20,7 @@ import numpy as np
 from ..kernels.contact import multi_field_contact, touching_separation
 from ..kernels.coupling import gather_increment, grid_force_kick
 from ..kernels.mpm import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
+from ..kernels.mpm_affine import g2p_affine, p2g_affine
 from ..kernels.partition import cell_keys
 from ..kernels.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
 from ..materials.dispatch import material_tag
@@ -42,6 +45,8 @@ class MPMStage:
         self.tags = static_tags(self.dim, self.kind)
         self.transfer = spec.transfer
         self.flip = spec.flip
+        self.affine = spec.velocity_update in ("apic", "mls")  # particles carry C
+        self.mls = spec.velocity_update == "mls"
         self.damping = spec.damping
         self.mass_cutoff = spec.mass_cutoff
         self.multi = spec.contact == "multi"
@@ -63,8 +68,8 @@ class MPMStage:
         # p + dt f into the momentum (one scatter instead of two, as Taichi's mpm88 does)
         # (the conservative coupling needs the nodal forces apart: not folded)
         self.conservative = case.coupled and case.coupling.interface == "conservative"
-        self.fold_force = (self.transfer == "usl" and self.flip == 0.0 and self.damping == 0.0
-                           and not self.multi and not self.conservative)
+        self.fold_force = (self.transfer == "usl" and (self.flip == 0.0 or self.affine)
+                           and self.damping == 0.0 and not self.multi and not self.conservative)
         # rows [0, n_p2g) take part in P2G and [0, n_g2p) are updated by G2P; None: all
         # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone).
         # With the conservative coupling the rows [n_g2p, n_p2g) (transition SPH) scatter
@@ -73,6 +78,7 @@ class MPMStage:
         self.signal = None  # max (c + |v|) after the last step, from G2P (see `step`)
         self._dvc = np.zeros((0, 0, 0))  # scratch: `_contact_change`, `_zero_stress`
         self._zeros = np.zeros((0, 3, 3))
+        self._grad = np.zeros((0, 3, 3))
         # only a CFL time step reads it (`Simulation.signal_speed`); a sqrt per particle else
         self.want_signal = case.time.cfl is not None
 
@@ -155,6 +161,8 @@ class MPMStage:
             out.append(FieldSpec("lp", ("dim",)))
         if any(b.stress for b in case.bodies):
             out.append(FieldSpec("prestress", (3, 3)))
+        if case.mpm.velocity_update in ("apic", "mls"):
+            out.append(FieldSpec("C", (3, 3)))  # the affine velocity (kernels/mpm_affine.py)
         return out
 
     # -- the loops ------------------------------------------------------------------------------
@@ -212,6 +220,18 @@ class MPMStage:
                 if hi == lo and lo > 0:
                     continue
                 sigma = p["sigma"][lo:hi] if stress else self._zero_stress(hi - lo)
+                if stress and self.affine:  # the MPM rows (the rows that carry C)
+                    p2g_affine(*self.tags, self.mls, p["x"][lo:hi], p["v"][lo:hi],
+                               p["C"][lo:hi], p["mass"][lo:hi], p["vol"][lo:hi], sigma,
+                               None if fext is None else fext[lo:hi],
+                               None if lp is None else lp[lo:hi],
+                               None if F is None else F[lo:hi],
+                               None if pfield is None else pfield[lo:hi], g.node0, g.offset,
+                               g.inv_dx, g.strides, g.mass, g.mom,
+                               g.force if force and not fold else None,
+                               g.mgrad if self.multi else None, g.mx if self.multi else None,
+                               dt if fold and force else None)
+                    continue
                 p2g(*self.tags, p["x"][lo:hi], p["v"][lo:hi], p["mass"][lo:hi],
                     p["vol"][lo:hi], sigma, None if fext is None else fext[lo:hi],
                     None if lp is None else lp[lo:hi], None if F is None else F[lo:hi],
@@ -258,6 +278,11 @@ class MPMStage:
         if with_force and self.conservative and self.n_p2g > self.n_g2p:
             self._grid_force_kick(dt)
 
+    def _gradients(self, n):
+        """A reused (n, 3, 3) array for the velocity gradients of an affine G2P."""
+        self._grad = rows_at_least(self._grad, n)
+        return self._grad[:n]
+
     def _contact_change(self):
         """A reused array shaped like the grid velocities, for the contact's change."""
         if self._dvc.shape != self.grid.vel.shape:
@@ -286,14 +311,23 @@ class MPMStage:
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p
         n, lp, _, pfield, pre, mstate = self._optional(self.n_g2p)
+        bad, signal, Lp = -1, None, None
+        blend = kinematics and not self.affine  # the PIC/FLIP kinematics of `g2p`
         with self.timers.phase("g2p"):
-            bad, signal = g2p(
-                *self.tags, self.mat_tag, self.pic_tag, p["x"][:n], p["v"][:n],
-                p.deformation(n) if deformation else None, p["sigma"][:n], p["vol"][:n],
-                p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n], self.mtypes,
-                self.mparams, mstate, pre, g.vel, g.dv if kinematics else None, g.node0,
-                g.offset, g.inv_dx, g.strides, dt, self.flip, g.lo, g.hi,
-                float(self.case.mpm.cpdi_reach), self.want_signal)
+            if kinematics and self.affine:  # v, C, x (and for USL the gradient L)
+                Lp = self._gradients(n) if deformation else None
+                bad = g2p_affine(*self.tags, self.mls, p["x"][:n], p["v"][:n], p["C"][:n], lp,
+                                 self._domain_F(n), pfield, g.vel, g.node0, g.offset,
+                                 g.inv_dx, g.strides, dt, g.lo, g.hi, Lp)
+            if deformation or blend:  # (with Lp, F and sigma from it: the grid is not read)
+                bad2, signal = g2p(
+                    *self.tags, self.mat_tag, self.pic_tag, p["x"][:n], p["v"][:n],
+                    p.deformation(n) if deformation else None, p["sigma"][:n], p["vol"][:n],
+                    p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n], self.mtypes,
+                    self.mparams, mstate, pre, g.vel, g.dv if blend else None, g.node0,
+                    g.offset, g.inv_dx, g.strides, dt, self.flip, g.lo, g.hi,
+                    float(self.case.mpm.cpdi_reach), self.want_signal, Lp)
+                bad = bad if bad >= 0 else bad2
         # max (c + |v|) of the owned rows, valid when this pass has the final velocities
         # too: USL's single pass and MUSL's second; after USF's first pass v changes again
         if deformation and (kinematics or self.transfer == "musl"):
