@@ -143,16 +143,18 @@ G = 9.81
 T_END = 0.44  # s, just past T = 1.935
 
 
-def _dam_mpm(dx, flip=1.0):
+def _dam_mpm(dx, flip=1.0, velocity_update="flip"):
     """The same column (1 x 2 in a 4 wide tank) in MPM: quadratic B-splines, USL, slip walls,
     cells of 2 spacings (4 particles per cell), CFL 0.3; `flip` the PIC/FLIP blend (1, the
-    default: FLIP)."""
+    default: FLIP) or `velocity_update` "apic" / "mls" (kernels/mpm_affine.py)."""
     c = 2 * dx
+    mpm = dict(shape="quadratic", transfer="usl", velocity_update=velocity_update)
+    if velocity_update == "flip":
+        mpm["flip"] = flip
     sc = Scene(2, grid=dict(origin=[0.0, 0.0], cell_size=c,
                             cells=[int(round(4.0 / c)), int(round(2.6 / c))]),
                gravity=[0, -G], time=dict(end=T_END, cfl=0.3),
-               mpm=dict(shape="quadratic", transfer="usl", flip=flip),
-               parallel=dict(axis="x", balance_every=50))
+               mpm=mpm, parallel=dict(axis="x", balance_every=50))
     sc.material("water", model="tait", rho=1000.0, kappa=560571.4, gamma=7.0, mu=0.0)
     sc.body(name="water", material="water", shape="box", min=[0, 0], max=[1, 2], spacing=dx)
     for face in ("x-", "x+", "y-", "y+"):
@@ -162,7 +164,7 @@ def _dam_mpm(dx, flip=1.0):
 
 def run_dam(dist, m, dx, quick):
     if m["family"] == "MPM":
-        sc = _dam_mpm(dx, m.get("flip", 1.0))
+        sc = _dam_mpm(dx, m.get("flip", 1.0), m.get("velocity_update", "flip"))
     else:
         sc = sph_dam_break(dx=dx, end=T_END, balance_every=50, axis="x")
     sim = sc.simulation(dist=dist)
@@ -191,7 +193,11 @@ DAM = dict(
              dict(label="MPM quadratic usl pic", family="MPM", shape="quadratic",
                   transfer="usl", flip=0.0),
              dict(label="MPM quadratic usl flip 0.99", family="MPM", shape="quadratic",
-                  transfer="usl", flip=0.99)],
+                  transfer="usl", flip=0.99),
+             dict(label="MPM quadratic usl apic", family="MPM", shape="quadratic",
+                  transfer="usl", velocity_update="apic"),
+             dict(label="MPM quadratic usl mls", family="MPM", shape="quadratic",
+                  transfer="usl", velocity_update="mls")],
     levels={"full": [0.05, 0.035, 0.025, 0.0177], "quick": [0.1, 0.05]},
     knob_of=lambda dx: dx / 0.05, run=run_dam,
     not_applicable={"SPH TL": "a fluid has no reference configuration",

@@ -316,6 +316,15 @@ def _check_periodic(periodic, domain, bodies, grid, key="domain.periodic"):
         length = hi[axis] - lo[axis]
         for i, b in enumerate(bodies):
             blo, bhi = b.geometry.bbox()
+            # a wall that closes the axis at either end (one that runs the whole period, as
+            # the plates of a channel do, or an obstacle inside it are fine)
+            near = 1e-9 * length + (max(b.spacing) if b.spacing is not None else 0.0)
+            spans = bhi[axis] - blo[axis] >= length - 1e-9 * length
+            if b.wall and not spans and (blo[axis] <= lo[axis] + near
+                                         or bhi[axis] >= hi[axis] - near):
+                raise ConfigError(key, f"bodies[{i}] ({b.name!r}) is a wall at an end of the "
+                                  f"periodic axis {'xyz'[axis]}: a periodic axis has no ends; "
+                                  "remove the wall or the axis from periodic")
             if b.spacing is None or bhi[axis] - blo[axis] < length - 1e-9 * length:
                 continue
             cells = length / b.spacing[axis]
