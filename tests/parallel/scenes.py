@@ -10,12 +10,12 @@ __all__ = ["coupled_bar_1d", "coupled_stress_bar", "dam_break", "handover_bar", 
 
 
 def dam_break(shape="quadratic", transfer="usl", barrier=True, balance_every=0,
-              balance_by="work", balance_threshold=0.1):
+              balance_by="work", balance_threshold=0.1, velocity_update="flip"):
     """BENCHMARKS.md scene 4 set-up (thesis §8.4): 4 x 2 column behind a gate removed at
     t = 0, slip walls, a barrier at x = 6 inside a grid extended to x = 8."""
     sc = Scene(2, grid=dict(origin=[0, 0], length=[8, 8], cells=[24, 24]),
                time=dict(end=2.0, dt=1e-3), gravity=[0, -9.81],
-               mpm=dict(shape=shape, transfer=transfer),
+               mpm=dict(shape=shape, transfer=transfer, velocity_update=velocity_update),
                parallel=dict(axis="x", balance_every=balance_every, balance_by=balance_by,
                              balance_threshold=balance_threshold))
     sc.material("water", model="tait", rho=997.5, kappa=2e6, gamma=7.0, mu=0.01)
@@ -27,12 +27,14 @@ def dam_break(shape="quadratic", transfer="usl", barrier=True, balance_every=0,
     return sc
 
 
-def loaded_bar(shape="gimp", transfer="usf"):
+def loaded_bar(shape="gimp", transfer="usf", velocity_update="flip"):
     """An elastic bar across every slab face with the features a slab face must not change:
     fixed face, traction load with a ramp, prescribed velocity, a gate, damping, gravity."""
     sc = Scene(2, grid=dict(origin=[0, 0], length=[2.0, 0.5], cells=[40, 10]),
                time=dict(end=1.0, dt=2e-4), gravity=[0, -9.81],
-               mpm=dict(shape=shape, transfer=transfer, damping=2.0, flip=0.9),
+               mpm=dict(shape=shape, transfer=transfer, damping=2.0,
+                        velocity_update=velocity_update,
+                        **({"flip": 0.9} if velocity_update == "flip" else {})),
                parallel=dict(axis="x", balance_every=0))
     sc.material("steel", model="stvk", E=2e5, nu=0.3, rho=1000.0)
     sc.body(name="bar", material="steel", shape="box", min=[0.0, 0.1], max=[1.8, 0.3], ppc=2)

@@ -125,6 +125,11 @@ def test_migration_conserves_count_mass_momentum_and_gids():
                                                                          "transfer": "musl"}),
                                           (loaded_bar, {}),
                                           (loaded_bar, {"shape": "cpdi", "transfer": "musl"}),
+                                          (dam_break, {"velocity_update": "apic"}),
+                                          (dam_break, {"velocity_update": "mls",
+                                                       "shape": "cubic"}),
+                                          (loaded_bar, {"velocity_update": "apic",
+                                                        "transfer": "musl"}),
                                           (dam_break, {"balance_every": 20,
                                                        "balance_by": "time",
                                                        "balance_threshold": 0.03})])
@@ -135,6 +140,7 @@ def test_state_after_200_steps_equals_one_rank(scene, kwargs):
     sim.run(max_steps=200)
     ref.run(max_steps=200)
     names = ["x", "v", "F" if "F" in ref.particles else "J", "sigma"]  # fluids store J
+    names += ["C"] if "C" in ref.particles else []  # APIC / MLS
     assert_equals_one_rank(dist, sim, ref, names)
 
 
