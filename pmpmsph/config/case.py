@@ -83,6 +83,9 @@ class SPHSpec:
                                        # (kernels/sph_hourglass.py; 0: off)
     damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
     density_diffusion: float = 0.1     # fluids: delta of delta-SPH (Antuono 2010; 0: off)
+    density_diffusion_model: str = "fourtakas"  # the hydrostatic splitting of Fourtakas
+                                       # et al. (2019; no gradient pass), or the
+                                       # renormalised gradient of Antuono et al. (2010)
     shifting: float = 0.0              # fluids: A of particle shifting D = A h |v| dt
                                        # (Lind et al. 2012; 0: off; kernels/sph_shifting.py)
     wall_no_slip: bool = True          # dummy walls: no-slip or free slip

@@ -268,6 +268,10 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         # delta of the delta-SPH density diffusion of fluids (kernels/sph_density.py);
         # 0.1 is Antuono et al.'s (2010) value, 0 switches it off
         density_diffusion=t.number("density_diffusion", 0.1, min=0.0, max=1.0),
+        # Fourtakas et al. (2019), DualSPHysics' default: as quiet at rest as Antuono's
+        # (tests/verification/test_sph_density_diffusion.py) without the gradient pass
+        density_diffusion_model=t.string("density_diffusion_model", "fourtakas",
+                                         choices=("fourtakas", "antuono")),
         # A of particle shifting (kernels/sph_shifting.py), off by default; Skillen et al.
         # (2013) use 2: beyond 10 a particle would move about its spacing a step
         shifting=t.number("shifting", 0.0, min=0.0, max=10.0),

@@ -19,6 +19,7 @@ import numpy as np
 from ..jit import njit
 from ..materials.codes import TAIT_FLUID
 from ..materials.dispatch import compute_stress, wave_speed
+from ..materials.fluid import stress_tait_of_jm1
 from ..materials.tensor import det3
 from .sph_kernels import kernel_dwdr, kernel_w
 
@@ -97,10 +98,18 @@ def sph_stress(n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mparams
             bad = a if bad < 0 else bad
             continue
         pairwise = morris_mu.shape[0] > 0 and morris_mu[mi] > 0.0
-        for i in range(3):
-            for j in range(3):
-                La[i, j] = 0.0 if pairwise else L[a, i, j]
-        compute_stress(mtypes[mi], Fa, La, dt, mstate[a], mparams[mi], sigma[a])
+        if mtypes[mi] == TAIT_FLUID:  # from J - 1 directly (no determinant of diag(J, 1, 1))
+            # the velocity gradient only for a viscous stress (not read otherwise)
+            viscous = not pairwise and mparams[mi, 3] != 0.0
+            for i in range(3):
+                for j in range(3):
+                    La[i, j] = L[a, i, j] if viscous else 0.0
+            stress_tait_of_jm1(J - 1.0, La, mparams[mi], sigma[a])
+        else:
+            for i in range(3):
+                for j in range(3):
+                    La[i, j] = 0.0 if pairwise else L[a, i, j]
+            compute_stress(mtypes[mi], Fa, La, dt, mstate[a], mparams[mi], sigma[a])
         if mtypes[mi] == TAIT_FLUID:
             # a fluid under tension (a splash, the wake of a body) clumps: its pair forces
             # attract (the tensile instability of SPH); `p_min` (e.g. 0) floors the pressure
@@ -131,7 +140,7 @@ def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
 def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
               start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
               acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None,
-              dcoef=None, gradrho=None, morris_mu=None):
+              dcoef=None, gradrho=None, morris_mu=None, split=False):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
@@ -216,7 +225,10 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     continuity equation of a pair of SPH rows of one such material gains the delta-SPH
     diffusion of Antuono et al. (2010), eq. (5) (see kernels/sph_density.py):
         drho_a += dcoef V_b psi_ab . grad_a W_ab,   drho_b -= dcoef V_a psi_ab . grad_a W_ab
-    (psi_ba = psi_ab and grad_b W_ba = -grad_a W_ab).
+    (psi_ba = psi_ab and grad_b W_ba = -grad_a W_ab). With `split` instead of `gradrho`,
+    psi_ab is that of Fourtakas et al. (2019): 2 (rho_b - rho_a - rho^H_ba) (x_b - x_a) /
+    |x_ab|^2, the hydrostatic density difference of the pair taken out (its form here:
+    kernels/sph_density.py), so no gradient pass is needed; it reads `cs` and `gravity`.
 
     With `morris_mu` (the dynamic viscosity per material, 0 where a material's viscosity is
     not pairwise) a pair of a fluid row a and a row b of the same fluid, or a dummy wall b,
@@ -240,6 +252,16 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
         dcoef = np.zeros(0)
         gradrho = np.zeros((0, 3))
     diffuse = dcoef.shape[0] > 0
+    if gradrho is None:  # (Fourtakas' splitting needs no gradients)
+        gradrho = np.zeros((0, 3))
+    # Fourtakas' splitting: drho/dp = 1/c^2 of each row, so rho^H_ba = -(q_a + q_b)/2 g . x_ab
+    # with q = rho/c^2 (kernels/sph_density.py), a load per pair instead of a division
+    rho_c2 = np.zeros(x.shape[0] if split else 0)
+    for a in range(rho_c2.shape[0]):
+        rho_c2[a] = rho[a] / (cs[a] * cs[a]) if cs[a] > 0.0 else 0.0
+    gx0 = gravity[0]
+    gx1 = gravity[1] if dim > 1 else 0.0
+    gx2 = gravity[2] if dim > 2 else 0.0
     if morris_mu is None:  # (no pairwise viscosity)
         morris_mu = np.zeros(0)
     pairwise = morris_mu.shape[0] > 0
@@ -270,6 +292,13 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
         va2 = v[a, 2] if dim > 2 else 0.0
         ma = mass[a]
         mpm_a = want_fsi and method[a] == MPM
+        # delta-SPH of row a: its coefficient (0: a takes no part) and, for Fourtakas'
+        # splitting, its material's coefficients of rho^H
+        mat_a = mat[a]
+        rho_a = rho[a]
+        ma_rho_a = ma / rho_a
+        dif_a = dcoef[mat_a] if diffuse and upd_a else 0.0
+        q_a = rho_c2[a] if split else 0.0
         for k in range(start[a], start[a + 1]):
             b = index[k]
             upd_b = b < n_query and method[b] == SPH
@@ -332,18 +361,22 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                     drho[b] += 2.0 * rho[b] * ma / rho[a] * (vab0 * g0 + vab1 * g1 + vab2 * g2)
                 else:
                     drho[b] += ma * (vab0 * cb0 + vab1 * cb1 + vab2 * cb2)
-            if (diffuse and method[a] == SPH and method[b] == SPH and mat[a] == mat[b]
-                    and dcoef[mat[a]] > 0.0):
-                # psi_ab . grad_a W_ab = -2 (rho_b - rho_a) fr - (<grad rho>_a + <grad rho>_b).g
-                pg = -2.0 * (rho[b] - rho[a]) * fr - (gradrho[a, 0] + gradrho[b, 0]) * g0
-                if dim > 1:
-                    pg -= (gradrho[a, 1] + gradrho[b, 1]) * g1
-                if dim > 2:
-                    pg -= (gradrho[a, 2] + gradrho[b, 2]) * g2
-                if upd_a:
-                    drho[a] += dcoef[mat[a]] * mb / rho[b] * pg
+            if dif_a > 0.0 and method[b] == SPH and mat[b] == mat_a:
+                if split:  # Fourtakas: -2 (rho_b - rho_a - rho^H_ba) fr
+                    rho_h = -0.5 * (q_a + rho_c2[b]) * (gx0 * xab0 + gx1 * xab1 + gx2 * xab2)
+                    pg = -2.0 * (rho[b] - rho_a - rho_h) * fr
+                else:
+                    # psi_ab . grad_a W_ab = -2 (rho_b - rho_a) fr
+                    #                        - (<grad rho>_a + <grad rho>_b) . g
+                    pg = -2.0 * (rho[b] - rho_a) * fr - (gradrho[a, 0] + gradrho[b, 0]) * g0
+                    if dim > 1:
+                        pg -= (gradrho[a, 1] + gradrho[b, 1]) * g1
+                    if dim > 2:
+                        pg -= (gradrho[a, 2] + gradrho[b, 2]) * g2
+                pg *= dif_a
+                drho[a] += mb / rho[b] * pg  # (a is an SPH row: upd_a)
                 if upd_b:
-                    drho[b] -= dcoef[mat[a]] * ma / rho[a] * pg
+                    drho[b] -= ma_rho_a * pg
             if want_L:
                 if kin_a:  # m_b (v~_b - v_a) (x) G_ab
                     u0 = mb * (vg[b, 0] - va0)

@@ -14,6 +14,24 @@ with V_b = m_b / rho_b. The first part of psi alone is the diffusion of Molteni 
 Laplacian of a field that is not linear in a truncated support is not zero), so it drives a
 slow flow towards the free surface; the renormalised gradients make psi vanish to second
 order for a linear density field, so the hydrostatic state stays at rest.
+
+Fourtakas, Dominguez, Vacondio & Rogers (2019), Comput. Fluids 190, eq. (17) (DualSPHysics'
+default density diffusion) reach the same end without the gradients: the hydrostatic part
+of each pair's density difference is taken out of psi,
+
+    psi_ab = 2 (rho_ba - rho^H_ba) (x_b - x_a) / |x_ab|^2,   rho_ba = rho_b - rho_a,
+
+so a fluid at rest under gravity diffuses nothing and the pass over the neighbours that
+builds <grad rho> is not needed. Fourtakas et al. take rho^H_ba = rho0 [(1 + dp/C_B)^(1/gamma)
+- 1] with dp = rho0 g z_ab, the Tait law linearised at the free surface. Here the pair's own
+state is used instead: dp = dp/drho drho = c^2 drho, and dp = rho g . (x_b - x_a) at rest,
+both at the pair's midpoint,
+
+    rho^H_ba = -(q_a + q_b)/2 g . x_ab,   q = rho / c^2,
+
+which is exact to third order in |x_ab| at any depth (the surface-linearised form is off by
+a relative p/(gamma kappa) in a deep tank) and, being odd in (a, b), gives the same pair term
+whichever end a half neighbour list puts first (the rank invariance of DESIGN.md §4).
 """
 import numpy as np
 
@@ -128,3 +146,4 @@ def density_gradient(dim_tag, kern_tag, h, n_query, x, mass, rho, method, mat, d
                 grad[a, 0] = (c00 * g[0] + c01 * g[1] + c02 * g[2]) / d
                 grad[a, 1] = (c01 * g[0] + c11 * g[1] + c12 * g[2]) / d
                 grad[a, 2] = (c02 * g[0] + c12 * g[1] + c22 * g[2]) / d
+

@@ -132,6 +132,9 @@ class SPHStage:
                                    * np.sqrt(mparams[i, 0] * mparams[i, 1] / mparams[i, 2])
                                    if mtypes[i] == TAIT_FLUID else 0.0
                                    for i in range(len(mtypes))])
+        # Fourtakas et al. (2019): the hydrostatic part of a pair's density difference is
+        # taken out instead of the renormalised gradients (`kernels.sph_density`)
+        self.split = self.dcoef is not None and spec.density_diffusion_model == "fourtakas"
         # particle shifting: A h of D = A h |v| dt (0: off)
         self.shift_coef = spec.shifting * self.h if shifting_fluids(case) else 0.0
         # walls that move with their velocity (bodies[].moving), by body index
@@ -156,7 +159,7 @@ class SPHStage:
             FieldSpec("acc", ("dim",)),
             FieldSpec("drho", ()),
             FieldSpec("L", (3, 3)),
-            FieldSpec("cs", (), migrate=False),
+            FieldSpec("cs", ()),  # migrates: the CFL signal of a row that just moved rank
             FieldSpec("S", (6,), migrate=False),
         ]
         if any(b.wall for b in case.bodies):
@@ -165,7 +168,8 @@ class SPHStage:
             out.append(FieldSpec("R", (6,), migrate=False))
         if case.sph.correction:
             out.append(FieldSpec("B", (3, 3), migrate=False, fill="identity"))
-        if diffusing_fluids(case):  # delta-SPH: renormalised density gradients
+        if diffusing_fluids(case) and case.sph.density_diffusion_model == "antuono":
+            # delta-SPH: renormalised density gradients
             out.append(FieldSpec("gradrho", (3,), migrate=False))
         if shifting_fluids(case):  # particle shifting: grad C and the surface eigenvalue
             out += [FieldSpec("gradc", (3,), migrate=False), FieldSpec("lam", (), migrate=False),
@@ -213,6 +217,10 @@ class SPHStage:
         self._correction(halo=False)
         self._density_gradient()
         with t.phase("sph"):
+            if self.split:  # Fourtakas' splitting reads the current sound speeds
+                sound_speeds(self.dim, p.n_total, p.with_halo("method"), p.with_halo("mat"),
+                             p.with_halo("rho"), p.with_halo("F"), self.mtypes, self.mparams,
+                             p.with_halo("cs"))
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
             sph_rates(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
                       p.with_halo("v"),
@@ -222,12 +230,12 @@ class SPHStage:
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
                       p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True,
                       np.zeros((0, self.dim)), False, self.corr_tag, self._B(), self.fluid,
-                      np.zeros((0, self.dim)), *self._diffusion())
+                      np.zeros((0, self.dim)), *self._diffusion(), split=self.split)
 
     def _density_gradient(self):
         """delta-SPH: the renormalised density gradient of the owned fluid rows, refreshed in
         the halo (the diffusion needs it at both ends of a pair). No-op without it."""
-        if self.dcoef is None:
+        if self.dcoef is None or self.split:
             return
         p = self.p
         n = p.n_owned
@@ -258,12 +266,14 @@ class SPHStage:
 
     def _gradrho_owned(self):
         """delta-SPH's density gradients of the owned rows (none without delta-SPH)."""
-        return self.p["gradrho"] if self.dcoef is not None else np.zeros((0, 3))
+        return self.p["gradrho"] if "gradrho" in self.p else np.zeros((0, 3))
 
     def _diffusion(self):
         """The sph_rates arguments of delta-SPH (None, None: off)."""
         if self.dcoef is None:
             return None, None
+        if self.split:
+            return self.dcoef, None
         return self.dcoef, self.p.with_halo("gradrho")
 
     def _B(self):
@@ -375,7 +385,7 @@ class SPHStage:
                       p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
                       "fsi" in p, self.corr_tag, self._B(), self.fluid,
                       p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)),
-                      *self._diffusion(), self.morris_mu)
+                      *self._diffusion(), self.morris_mu, self.split)
             if self.hourglass > 0.0:
                 hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                                  p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),
