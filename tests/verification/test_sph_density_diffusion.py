@@ -15,8 +15,8 @@
    deeper than 8 spacings within 0.05 (the two surface particles at the wall corners move
    0.17 spacings with or without diffusion: the corner of wall and free surface).
 
-Both forms of the diffusion are run. Measured (this build): noise 0.49 % with Fourtakas'
-splitting (99th percentile of the displacements 0.073 spacings, deep 0.007), 0.68 % with
+Both forms of the diffusion are run. Measured (this build): noise 0.46 % with Fourtakas'
+splitting (99th percentile of the displacements 0.075 spacings, deep 0.009), 0.68 % with
 Antuono's gradients, against 1.73 % without (below 4
 spacings 0.41 % against 0.93 %; below one spacing 1.03 % against 1.78 %); displacements:
 99th percentile 0.061 / 0.042 spacings, deep 0.012 / 0.005; 30 s for both runs.
