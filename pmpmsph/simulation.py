@@ -18,7 +18,7 @@ from .io.restart import Restart
 from .kernels.deformation import jacobian
 from .kernels.diagnostics import max_signal_speed, particle_sums
 from .materials.dispatch import material_tag
-from .parallel.decomposition import Decomposition
+from .parallel.decomposition import Decomposition, default_axis
 from .parallel.distributor import Distributor
 from .parallel.balance import LoadBalancer
 from .parallel.rebalancing import Rebalancing
@@ -137,18 +137,15 @@ class Simulation(Restart, Rebalancing):
         if spec is None:
             return None
         axis = case.parallel.axis
-        if case.periodic and self.dist.size > 1:  # the slabs are cut across the periods
-            if axis in case.periodic:
-                raise ConfigError("parallel.axis", "the slabs cannot be cut along a periodic "
-                                  "axis in this version: choose another axis")
-            if axis is None:
-                free = [a for a in range(case.dim) if a not in case.periodic]
-                if not free:
-                    raise ConfigError("domain.periodic", "with every axis periodic the scene "
-                                      "runs on one rank in this version")
-                axis = max(free, key=lambda a: spec.cells[a])
+        if case.periodic and axis is None:  # cut across a period if there is a free axis
+            free = [a for a in range(case.dim) if a not in case.periodic] or list(range(case.dim))
+            axis = max(free, key=lambda a: spec.cells[a])
+        axis = default_axis(spec.cells) if axis is None else axis
+        period = None
+        if axis in case.periodic:  # the first and last slabs are neighbours
+            period = case.domain[1][axis] - case.domain[0][axis]
         return Decomposition(self.dist, spec, axis=axis,
-                             key="grid.cells" if case.grid else "domain")
+                             key="grid.cells" if case.grid else "domain", period=period)
 
     # -- time step --------------------------------------------------------------------------
     def signal_speed(self):

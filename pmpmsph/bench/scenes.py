@@ -206,15 +206,15 @@ def sph_cavity(n=30, end=20.0, laminar="morris", reynolds=100.0, c0=10.0):
     return sc
 
 
-def sph_couette(n=20, nu=0.5, end=2.5, laminar="morris"):
+def sph_couette(n=20, nu=0.5, end=2.5, laminar="morris", periods=16):
     """Couette flow start-up: a fluid layer of unit depth between a wall at rest (y = 0) and
-    a wall sliding at U = 1 (y = 1), periodic along x over 16 spacings (no ends), from rest;
+    a wall sliding at U = 1 (y = 1), periodic along x over `periods` spacings, from rest;
     Tait fluid rho0 = 1000, c0 = 10 U, kinematic viscosity `nu` (Re = U H / nu = 2 for 0.5;
     the flow is steady after about H^2 / (pi^2 nu) x 10 = 2 s), Wendland C2 at h = 1.3
     spacings, no artificial viscosity. Exact: `couette_exact`."""
     dp = 1.0 / n
     w = 4 * dp
-    length = 16 * dp
+    length = periods * dp
     rho0 = 1000.0
     sc = Scene(2, domain=dict(min=[0.0, -w - dp], max=[length, 1 + w + dp], periodic=["x"]),
                time=dict(end=end, cfl=0.25),

@@ -23,8 +23,11 @@ def default_axis(cells):
 
 
 class Decomposition:
-    def __init__(self, dist, grid_spec, axis=None, faces=None, key="grid.cells"):
+    def __init__(self, dist, grid_spec, axis=None, faces=None, key="grid.cells", period=None):
         self.dist = dist
+        #: the length of the domain along the slab axis when that axis is periodic (SPH
+        #: scenes): the first and last slabs are then neighbours (`routes`)
+        self.period = period
         self.spec = grid_spec
         self.axis = default_axis(grid_spec.cells) if axis is None else axis
         self.ncells = int(grid_spec.cells[self.axis])
@@ -65,6 +68,30 @@ class Decomposition:
     @property
     def right(self):
         return self.rank + 1 if self.rank < self.size - 1 else None
+
+    def routes(self):
+        """The particle neighbours of this slab: (side, rank, shift) per face that has one,
+        side 0 the low face and 1 the high face; `shift` is what a position received across
+        that face gains (the period, when the face is the periodic wrap; else 0). On two
+        ranks with a periodic axis both faces lead to the other rank. One rank has none (its
+        periodic images stay inside it, `ParticleHalo`)."""
+        out = []
+        if self.left is not None:
+            out.append((0, self.left, 0.0))
+        elif self.period is not None and self.size > 1:
+            out.append((0, self.size - 1, -self.period))
+        if self.right is not None:
+            out.append((1, self.right, 0.0))
+        elif self.period is not None and self.size > 1:
+            out.append((1, 0, self.period))
+        return out
+
+    def slab_distance(self, owner):
+        """How many slabs away the ranks `owner` are (around the period when periodic)."""
+        d = np.abs(np.asarray(owner) - self.rank)
+        if self.period is not None:
+            d = np.minimum(d, self.size - d)
+        return d
 
     def cell_of(self, x):
         """Domain cell index along the slab axis of positions x (n, dim), clipped to the grid."""
@@ -109,4 +136,4 @@ class Decomposition:
         return ghosts, shared
 
     def with_faces(self, faces):
-        return Decomposition(self.dist, self.spec, self.axis, faces, self.key)
+        return Decomposition(self.dist, self.spec, self.axis, faces, self.key, self.period)

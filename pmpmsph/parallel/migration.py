@@ -55,9 +55,12 @@ def migrate(decomposition, particles, step=0, hop=False):
     leaving = slab_leavers(x, dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells, dec.lo_cell,
                            dec.hi_cell)
     owner = dec.owner(x[leaving])
-    if hop:
+    if hop and dec.period is None:
         owner = np.clip(owner, dec.rank - 1, dec.rank + 1)
-    far = leaving[np.abs(owner - dec.rank) > 1]
+    elif hop:  # one slab towards the owner, the short way round the period
+        step = np.where((owner - dec.rank) % dec.size <= dec.size // 2, 1, -1)
+        owner = np.where(owner == dec.rank, owner, (dec.rank + step) % dec.size)
+    far = leaving[dec.slab_distance(owner) > 1]
     if dec.dist.any(len(far) > 0):
         gid = int(particles["gid"][far[0]]) if len(far) else -1
         raise RunError(step, gid, "particle jumped over a whole slab in one step (dt too "
@@ -65,9 +68,7 @@ def migrate(decomposition, particles, step=0, hop=False):
     names = particles.fields(migrate=True)
     comm = dec.dist.comm
     sends = []
-    for nb in (dec.left, dec.right):
-        if nb is None:
-            continue
+    for nb in sorted({nb for _, nb, _ in dec.routes()}):  # (on two periodic ranks: once)
         idx = leaving[owner == nb]
         sends.append((nb, _pack(particles, names, idx)))
     counts = {}

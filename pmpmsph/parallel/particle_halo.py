@@ -16,11 +16,16 @@ TAG_HALO_REFRESH = 33
 
 
 class ParticleHalo:
-    """`periodic`: (axis, lo, length) of each periodic axis of the domain that the slabs do
-    not cut: after the neighbours' rows, the rows (owned and halo) within `width` of either
-    end of such an axis are copied to the other end as images, shifted by the period, axis
-    after axis (so a corner of two periodic axes gets its diagonal images too); `refresh`
-    copies them again from the same rows."""
+    """`periodic`: (axis, lo, length) of each periodic axis of the domain. Along the slab
+    axis of several ranks the first and last slabs are neighbours (`Decomposition.routes`):
+    the rows crossing that wrap arrive shifted by the period. Along every other periodic
+    axis (and the slab axis of one rank), after the neighbours' rows, the rows (owned and
+    halo) within `width` of either end of the axis are copied to the other end as images,
+    shifted by the period, axis after axis (so a corner of two periodic axes gets its
+    diagonal images too); `refresh` copies them again from the same rows.
+
+    Messages carry the side of the sender's face in their tag, so the two routes between the
+    same two ranks (two ranks, periodic) stay apart."""
 
     def __init__(self, decomposition, particles, width, check=True, periodic=()):
         self.dec = decomposition
@@ -32,6 +37,9 @@ class ParticleHalo:
                 raise ConfigError("domain.periodic", f"the period {length:g} along "
                                   f"{'xyz'[axis]} is shorter than twice the halo width "
                                   f"{self.width:g} (2.75 h): lengthen the domain")
+        # the axes with images: all periodic ones but a slab axis cut between ranks
+        self.imaged = tuple(per for per in self.periodic
+                            if not (per[0] == decomposition.axis and decomposition.size > 1))
         self._images = []  # (source rows, first image row, axis, shift) of the last exchange
         thinnest = np.diff(decomposition.faces).min() * decomposition.dx
         if check and decomposition.size > 1 and self.width > thinnest:
@@ -42,17 +50,15 @@ class ParticleHalo:
         self._plan = None  # (send lists, [(neighbour, first halo row, count)]) of the last exchange
 
     def send_lists(self):
-        """Owned particles within `width` of the low and high faces of this slab."""
+        """Owned particles within `width` of the low and high faces of this slab, per route
+        (side, neighbour, shift) of `Decomposition.routes`."""
         dec = self.dec
         xa = self.particles["x"][:, dec.axis]
         lo_face = dec.origin + dec.lo_cell * dec.dx
         hi_face = dec.origin + dec.hi_cell * dec.dx
-        out = {}
-        if dec.left is not None:
-            out[dec.left] = np.nonzero(xa < lo_face + self.width)[0]
-        if dec.right is not None:
-            out[dec.right] = np.nonzero(xa >= hi_face - self.width)[0]
-        return out
+        return {route: np.nonzero(xa < lo_face + self.width if route[0] == 0
+                                  else xa >= hi_face - self.width)[0]
+                for route in dec.routes()}
 
     def exchange(self):
         """Rebuild the halo rows (the neighbours', then the periodic images); returns how
@@ -67,7 +73,7 @@ class ParticleHalo:
     def _add_images(self):
         p = self.particles
         self._images = []
-        for axis, lo, length in self.periodic:
+        for axis, lo, length in self.imaged:
             xa = p.arrays["x"][: p.n_total, axis]
             low = np.nonzero(xa < lo + self.width)[0]
             high = np.nonzero(xa >= lo + length - self.width)[0]
@@ -95,29 +101,35 @@ class ParticleHalo:
 
         comm = self.dec.dist.comm
         lists = self.send_lists()
-        sends = {nb: _pack(p, self.names, idx) for nb, idx in lists.items()}
+        sends = {route: _pack(p, self.names, idx) for route, idx in lists.items()}
         counts, reqs = {}, []
-        for nb, rows in sends.items():
-            counts[nb] = np.zeros(2, np.int64)
-            reqs.append(comm.Isend(np.array(rows.shape, np.int64), dest=nb, tag=TAG_HALO_COUNT))
-            reqs.append(comm.Irecv(counts[nb], source=nb, tag=TAG_HALO_COUNT))
+        for (side, nb, shift), rows in sends.items():
+            # sent from my face `side`, it reaches the neighbour's opposite face
+            counts[side] = np.zeros(2, np.int64)
+            reqs.append(comm.Isend(np.array(rows.shape, np.int64), dest=nb,
+                                   tag=TAG_HALO_COUNT + 100 * side))
+            reqs.append(comm.Irecv(counts[side], source=nb,
+                                   tag=TAG_HALO_COUNT + 100 * (1 - side)))
         MPI.Request.Waitall(reqs)
         reqs, bufs = [], []
-        for nb, rows in sends.items():
-            buf = np.empty(tuple(int(c) for c in counts[nb]), np.uint8)
+        for (side, nb, shift), rows in sends.items():
+            buf = np.empty(tuple(int(c) for c in counts[side]), np.uint8)
             bufs.append(buf)
             if rows.size:
-                reqs.append(comm.Isend(rows, dest=nb, tag=TAG_HALO_DATA))
+                reqs.append(comm.Isend(rows, dest=nb, tag=TAG_HALO_DATA + 100 * side))
                 self.bytes_sent += rows.nbytes
             if buf.size:
-                reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_DATA))
+                reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_DATA + 100 * (1 - side)))
         MPI.Request.Waitall(reqs)
         received = 0
         recv_rows = []
-        for nb, buf in zip(sends, bufs):
-            recv_rows.append((nb, p.n_total, buf.shape[0]))
+        for route, buf in zip(sends, bufs):
+            recv_rows.append((route, p.n_total, buf.shape[0]))
             if buf.shape[0]:
-                p.append_halo(_unpack(p, self.names, buf))
+                values = _unpack(p, self.names, buf)
+                if route[2] != 0.0:  # across the periodic wrap
+                    values["x"][:, self.dec.axis] += route[2]
+                p.append_halo(values)
                 received += buf.shape[0]
         self._plan = (lists, recv_rows)
         return received
@@ -138,20 +150,22 @@ class ParticleHalo:
         comm = self.dec.dist.comm
         lists, recv_rows = self._plan
         reqs, bufs = [], []
-        for nb, idx in lists.items():
+        for (side, nb, _), idx in lists.items():
             rows = _pack(p, names, idx)
             if rows.size:
-                reqs.append(comm.Isend(rows, dest=nb, tag=TAG_HALO_REFRESH))
+                reqs.append(comm.Isend(rows, dest=nb, tag=TAG_HALO_REFRESH + 100 * side))
                 self.bytes_sent += rows.nbytes
         width = sum(int(np.prod(p.arrays[nm].shape[1:], dtype=np.int64))
                     * p.arrays[nm].itemsize for nm in names)
-        for nb, first, count in recv_rows:
+        for (side, nb, shift), first, count in recv_rows:
             buf = np.empty((count, width), np.uint8)
-            bufs.append((first, buf))
+            bufs.append((first, shift, buf))
             if count:
-                reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_REFRESH))
+                reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_REFRESH + 100 * (1 - side)))
         MPI.Request.Waitall(reqs)
-        for first, buf in bufs:
+        for first, shift, buf in bufs:
             if buf.shape[0]:
                 for name, arr in _unpack(p, names, buf).items():
                     p.arrays[name][first:first + buf.shape[0]] = arr
+                    if name == "x" and shift != 0.0:
+                        p.arrays[name][first:first + buf.shape[0], self.dec.axis] += shift

@@ -90,6 +90,22 @@ def test_sph_periodic_couette_equals_one_rank():
     _compare(dist, sim, ref)
 
 
+def test_sph_periodic_slab_axis_equals_one_rank():
+    """Periodic along x and the slabs cut along x too: the first and last ranks are
+    neighbours across the wrap (on two ranks both faces lead to the other rank), halo rows
+    arrive shifted by the period and the fluid near the lid migrates across the wrap."""
+    def scene():
+        sc = sph_couette(n=20, end=1.0, periods=48)
+        sc.data["parallel"] = dict(axis="x", balance_every=0)
+        sc.data["bodies"][0]["velocity"] = [0.5, 0.0]  # the whole layer drifts along x
+        return sc
+
+    dist, sim, ref = _on_both(scene, 300)
+    assert sim.decomposition.axis == 0 and sim.decomposition.period == pytest.approx(2.4)
+    assert dist.sum(sim.migrated) > 0
+    _compare(dist, sim, ref)
+
+
 def test_sph_dam_break_with_shifting_and_viscosity_equals_one_rank():
     """delta-SPH (on by default), particle shifting and the Morris viscosity with no-slip
     walls: the same state on any number of ranks."""

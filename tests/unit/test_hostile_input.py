@@ -57,7 +57,7 @@ SUBSET_2 = ["syntax_unclosed_table", "type_string_for_number", "missing_material
             "ranks_grid_too_thin", "dt_above_stable_limit", "output_exists",
             "out_is_file", "out_is_file_without_overwrite", "out_cannot_be_made",
             "nesting_too_deep", "output_fields_empty", "dt_absurd_step_count",
-            "max_steps_negative", "max_steps_not_integer", "periodic_slab_axis",
+            "max_steps_negative", "max_steps_not_integer", "periodic_axis_closed_by_wall",
             "periodic_period_not_whole_spacings"]
 
 
