@@ -137,10 +137,15 @@ class Simulation(Restart, Rebalancing):
         if spec is None:
             return None
         axis = case.parallel.axis
-        if case.periodic and axis is None:  # cut across a period if there is a free axis
-            free = [a for a in range(case.dim) if a not in case.periodic] or list(range(case.dim))
+        periodic = case.periodic or (case.grid.periodic if case.grid else ())
+        if periodic and axis is None:  # cut across a period if there is a free axis
+            free = [a for a in range(case.dim) if a not in periodic] or list(range(case.dim))
             axis = max(free, key=lambda a: spec.cells[a])
         axis = default_axis(spec.cells) if axis is None else axis
+        if case.grid and axis in case.grid.periodic and self.dist.size > 1:
+            raise ConfigError("parallel.axis", "the slabs of an MPM grid cannot be cut along "
+                              "its periodic axis in this version: choose another axis (or run "
+                              "on one rank)")
         period = None
         if axis in case.periodic:  # the first and last slabs are neighbours
             period = case.domain[1][axis] - case.domain[0][axis]

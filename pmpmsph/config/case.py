@@ -28,6 +28,9 @@ class GridSpec:
     #: CPDI domains reaching R cells need R + 1 and R + 2 (set from `mpm.cpdi_reach`)
     pad: int = 2
     ghost: int = 3
+    #: axes (0, 1, 2) along which the grid is periodic: node i and node i + cells are one
+    #: node (MPM scenes; `Grid.fold_periodic`)
+    periodic: tuple = ()
 
     @property
     def dim(self):

@@ -103,11 +103,16 @@ def _grid(t, dim):
     else:
         length = t.vector("length", dim, positive=True, scalar_ok=True)
         h = tuple(length[a] / cells[a] for a in range(dim))
+    periodic = _axes_list(t, "periodic", dim)
+    for a in periodic:  # the folded ends must not overlap (`Grid.fold_periodic`)
+        if cells[a] < 8:
+            raise ConfigError(t.key("periodic"), f"a periodic axis needs at least 8 cells; "
+                              f"{'xyz'[a]} has {cells[a]}")
     if math.prod(cells) > 2e8:
         raise ConfigError(t.key("cells"), f"{math.prod(cells)} cells is more than this solver "
                           "allocates (2e8)")
     t.finish()
-    return GridSpec(origin, h, cells)
+    return GridSpec(origin, h, cells, periodic=periodic)
 
 
 def _geometry(t, dim):
@@ -296,14 +301,20 @@ def _domain(t, dim):
     for a in range(dim):
         if hi[a] <= lo[a]:
             raise ConfigError(t.key("max") + f"[{a}]", "max must exceed min")
-    names = t.raw("periodic", [])
+    periodic = _axes_list(t, "periodic", dim)
+    t.finish()
+    return (lo, hi), periodic
+
+
+def _axes_list(t, key, dim):
+    """A list of distinct axis names ("x", "y", "z") as sorted axis indices."""
+    names = t.raw(key, [])
     axes = "xyz"[:dim]
     if (not isinstance(names, list) or not all(isinstance(n, str) and n in axes for n in names)
             or len(set(names)) != len(names)):
-        raise ConfigError(t.key("periodic"), f"expected a list of distinct axes among "
+        raise ConfigError(t.key(key), f"expected a list of distinct axes among "
                           f"{', '.join(axes)}, got {names!r}")
-    t.finish()
-    return (lo, hi), tuple(sorted(axes.index(n) for n in names))
+    return tuple(sorted(axes.index(n) for n in names))
 
 
 def _check_periodic(periodic, domain, bodies, grid, key="domain.periodic"):
@@ -472,6 +483,12 @@ def case_from_dict(data, name="case", text=""):
                 b.region.hi[a] < grid.origin[a] or b.region.lo[a] > grid.upper[a]
                 for a in range(dim)):
             raise ConfigError(f"{b.key}.box", "lies outside the grid: it holds no grid node")
+        if b.region.face and "xyz".index(b.region.face[0]) in grid.periodic:
+            raise ConfigError(f"{b.key}.face", f"{b.region.face} is an end of the periodic "
+                              f"axis {b.region.face[0]}: a periodic axis has no ends")
+    if grid is not None and grid.periodic and has_sph:
+        raise ConfigError("grid.periodic", "periodic grids are for MPM scenes in this "
+                          "version (SPH scenes: [domain] periodic; coupled scenes: not yet)")
     loads = tuple(_load(lt, dim, names) for lt in root.subs("loads"))
     if len({ld.ramp for ld in loads}) > 1:
         raise ConfigError("loads[1].ramp", "all loads share one ramp time in this version")

@@ -65,6 +65,31 @@ class Grid:
         self.lo = self.global_origin - self.dx
         self.hi = np.array(spec.upper) + self.dx
 
+    def fold_periodic(self, arrays):
+        """Make the grid periodic along `spec.periodic` (axes the slabs do not cut): padded
+        node g and g + cells are one node, so the nodal sums of the padded layers beyond each
+        end are added into the nodes they stand for and the full sums copied back. After
+        P2G; the solve is node-local, so the copies then hold the same velocities."""
+        for a in self.spec.periodic:
+            n = int(self.spec.cells[a])
+            total = n + 1 + 2 * self.pad
+            pairs = ((slice(0, self.pad), slice(n, n + self.pad)),         # below the start
+                     (slice(self.pad + n, total), slice(self.pad, total - n)))  # past the end
+            for arr in arrays:
+                blk = self.block(arr)
+                for image, node in pairs:
+                    index_i = [slice(None)] * blk.ndim
+                    index_n = [slice(None)] * blk.ndim
+                    index_i[1 + a] = image
+                    index_n[1 + a] = node
+                    blk[tuple(index_n)] += blk[tuple(index_i)]
+                for image, node in pairs:
+                    index_i = [slice(None)] * blk.ndim
+                    index_n = [slice(None)] * blk.ndim
+                    index_i[1 + a] = image
+                    index_n[1 + a] = node
+                    blk[tuple(index_i)] = blk[tuple(index_n)]
+
     def block(self, arr):
         """`arr` (nfields, n_nodes[, dim]) viewed as (nfields, *shape[, dim])."""
         return arr.reshape((arr.shape[0],) + self.shape + arr.shape[2:])

@@ -129,8 +129,9 @@ class MPMStage:
                        shared if decomposition.right is not None else 0)
                       if decomposition.axis == 0 else (every, every))
         self._span = (0, self.grid.n_nodes)
-        # a small grid (a 1D bar, a few cells) is not worth the range's Python work per step
-        self._trim = self.grid.n_nodes >= TRIM_MIN_NODES
+        # a small grid (a 1D bar, a few cells) is not worth the range's Python work per step;
+        # a periodic grid folds its end layers, which must be reset every step
+        self._trim = self.grid.n_nodes >= TRIM_MIN_NODES and not self.case.grid.periodic
 
     @contextmanager
     def detached(self):
@@ -246,6 +247,9 @@ class MPMStage:
         if self.halo_enabled:  # ghosts get the full sums too, so no broadcast after the solve
             with t.phase("halo"):
                 self.halo.sum(sums)
+        if self.case.grid.periodic:
+            with t.phase("halo"):
+                g.fold_periodic(sums)
 
     def _solve(self, dt, time, with_force):
         g = self.grid
@@ -343,6 +347,22 @@ class MPMStage:
     def step(self, dt, time):
         """Advance owned MPM particles by dt; returns the index of a failed particle or -1.
         Leaves `signal` = max (c + |v|) over the owned particles after the step (or None)."""
+        bad = self._step(dt, time)
+        self._wrap_periodic()
+        return bad
+
+    def _wrap_periodic(self):
+        """Particles that crossed an end of a periodic axis re-enter at the other end."""
+        spec = self.case.grid
+        if not spec.periodic:
+            return
+        n = self.n_g2p
+        x = self.p["x"]
+        for a in spec.periodic:
+            lo, length = spec.origin[a], spec.cells[a] * spec.cell_size[a]
+            x[:n, a] = lo + np.mod(x[:n, a] - lo, length)
+
+    def _step(self, dt, time):
         self.signal = None
         if self.transfer == "usl":
             self._p2g(True, dt)
