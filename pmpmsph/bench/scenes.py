@@ -206,6 +206,47 @@ def sph_cavity(n=30, end=20.0, laminar="morris", reynolds=100.0, c0=10.0):
     return sc
 
 
+def mpm_cavity(n=32, end=20.0, velocity_update="apic", reynolds=100.0, c0=10.0,
+               shape="quadratic"):
+    """The lid-driven cavity of `sph_cavity` in MPM: n x n cells over the unit square filled
+    with the same fluid (2 x 2 particles per cell), no-slip grid walls (`fixed`, mirrored
+    beyond the wall) and a lid that is the face y = 1 with velocity (1, 0) (the wall nodes
+    take it, the nodes beyond see 2 U - v); the side walls are listed after the lid, so the
+    two top corner nodes are at rest. USL at Courant number 0.3."""
+    rho0 = 1000.0
+    sc = Scene(2, grid=dict(origin=[0.0, 0.0], length=[1.0, 1.0], cells=[n, n]),
+               time=dict(end=end, cfl=0.3),
+               mpm=dict(shape=shape, transfer="usl", velocity_update=velocity_update),
+               parallel=dict(balance_every=0))
+    sc.material("water", model="tait", rho=rho0, kappa=c0 * c0 * rho0 / 7.0, gamma=7.0,
+                mu=rho0 / reynolds)
+    sc.body(name="fluid", material="water", shape="box", min=[0, 0], max=[1, 1], ppc=2)
+    for face in ("x-", "x+", "y-"):
+        sc.boundary(face=face, type="fixed")
+    sc.boundary(face="y+", type="fixed", velocity=[1.0, 0.0])
+    return sc
+
+
+def mpm_couette(n=32, nu=0.5, end=2.5, velocity_update="apic", shape="quadratic"):
+    """The Couette start-up of `sph_couette` in MPM: a grid of 8 x n cells (periodic along
+    x, 8 cells long) filled with the fluid (2 x 2 particles per cell) between a no-slip floor
+    (`fixed`) and a lid that is the face y = 1 with velocity (1, 0). No corners: the lid
+    only drags. USL at Courant number 0.3."""
+    length = 8.0 / n
+    rho0 = 1000.0
+    sc = Scene(2, grid=dict(origin=[0.0, 0.0], length=[length, 1.0], cells=[8, n],
+                            periodic=["x"]),
+               time=dict(end=end, cfl=0.3),
+               mpm=dict(shape=shape, transfer="usl", velocity_update=velocity_update),
+               parallel=dict(balance_every=0))
+    sc.material("oil", model="tait", rho=rho0, kappa=100.0 * rho0 / 7.0, gamma=7.0,
+                mu=rho0 * nu)
+    sc.body(name="fluid", material="oil", shape="box", min=[0, 0], max=[length, 1], ppc=2)
+    sc.boundary(face="y-", type="fixed")
+    sc.boundary(face="y+", type="fixed", velocity=[1.0, 0.0])
+    return sc
+
+
 def sph_couette(n=20, nu=0.5, end=2.5, laminar="morris", periods=16):
     """Couette flow start-up: a fluid layer of unit depth between a wall at rest (y = 0) and
     a wall sliding at U = 1 (y = 1), periodic along x over `periods` spacings, from rest;

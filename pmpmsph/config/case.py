@@ -132,6 +132,7 @@ class BoundarySpec:
     friction: float = 0.0
     until: float = float("inf")  # gates: removed at this time
     key: str = ""
+    velocity: tuple = ()        # fixed: the wall's velocity (a lid; () for a wall at rest)
 
 
 @dataclass(frozen=True)

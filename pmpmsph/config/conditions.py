@@ -54,8 +54,17 @@ def _boundary(t, dim):
         normal = tuple(c / norm for c in normal)
     mu = t.number("friction", 0.0, min=0.0) if kind == "friction" else 0.0
     until = t.number("until", math.inf, min=0.0) if t.has("until") else math.inf
+    velocity = ()
+    if t.has("velocity"):
+        if kind != "fixed":
+            raise ConfigError(t.key("velocity"), "a wall velocity applies to type = \"fixed\" "
+                              "(the nodes take it: a lid)")
+        velocity = t.vector("velocity", dim)
+        if region.face and velocity[FACES.index(region.face) // 2] != 0.0:
+            raise ConfigError(t.key("velocity"), "a face may only move along itself (its "
+                              "normal component must be 0)")
     t.finish()
-    return BoundarySpec(region, kind, normal, mu, until, t.path)
+    return BoundarySpec(region, kind, normal, mu, until, t.path, velocity)
 
 
 def _no_face(t):

@@ -183,10 +183,10 @@ BC_CODES = {"fixed": FIXED, "slip": SLIP, "friction": FRICTION}
 
 
 @njit
-def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, gvel, gdv):
+def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, bc_wall, gvel, gdv):
     """Velocity boundary conditions on grid nodes, for every velocity field.
 
-    fixed: v = 0.  slip: v.n = 0 (thesis eq. 90, non-penetration).  friction: Coulomb wall,
+    fixed: v = the wall's velocity `bc_wall` (0 for a wall at rest; a lid slides).  slip: v.n = 0 (thesis eq. 90, non-penetration).  friction: Coulomb wall,
     one-sided: only an approaching normal velocity (v.n > 0, n outward) is removed, and the
     tangential velocity is reduced by mu times it. The FLIP increment gdv is changed by the
     same amount as the velocity, so constrained components carry no spurious acceleration.
@@ -198,8 +198,8 @@ def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, gvel, gdv):
         for fld in range(nf):
             if kind == FIXED:
                 for a in range(dim):
-                    gdv[fld, i, a] -= gvel[fld, i, a]
-                    gvel[fld, i, a] = 0.0
+                    gdv[fld, i, a] += bc_wall[j, a] - gvel[fld, i, a]
+                    gvel[fld, i, a] = bc_wall[j, a]
                 continue
             vn = 0.0
             for a in range(dim):
@@ -226,14 +226,16 @@ def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, gvel, gdv):
 
 
 @njit
-def mirror_grid_bc(dim, outside, inside, kind, normal, gvel, gdv):
+def mirror_grid_bc(dim, outside, inside, kind, normal, wall, gvel, gdv):
     """Velocities of the nodes beyond a wall as the mirror image of those inside it.
 
     Wide stencils (GIMP, B-splines) give a particle near a wall weight on nodes one or two
     cells inside it, so constraining the wall nodes alone does not stop it crossing. With the
     outside nodes set to the reflection of the inside ones, the interpolated normal velocity
     is odd about the wall and vanishes on it, for any stencil: slip reflects the normal
-    component (v -> v - 2 (v.n) n), fixed reverses the whole velocity. Same for dv.
+    component (v -> v - 2 (v.n) n), fixed reverses the whole velocity relative to the wall's
+    (v -> 2 v_wall - v, so a lid's velocity is what the stencils see on the wall). Same for
+    dv (the wall's velocity is constant: dv -> -dv).
     """
     nf = gvel.shape[0]
     for j in range(outside.shape[0]):
@@ -242,7 +244,7 @@ def mirror_grid_bc(dim, outside, inside, kind, normal, gvel, gdv):
         for f in range(nf):
             if kind == FIXED:
                 for a in range(dim):
-                    gvel[f, o, a] = -gvel[f, i, a]
+                    gvel[f, o, a] = 2.0 * wall[a] - gvel[f, i, a]
                     gdv[f, o, a] = -gdv[f, i, a]
             else:
                 vn = 0.0

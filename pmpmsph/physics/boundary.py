@@ -21,7 +21,9 @@ class GridBoundaries:
                 nodes = grid.nodes_in_box(spec.region.lo, spec.region.hi)
             normal = np.zeros(3)
             normal[:dim] = spec.normal if spec.normal else 0.0
-            self.parts.append((nodes, BC_CODES[spec.kind], normal, spec.friction))
+            wall = np.zeros(3)
+            wall[:dim] = spec.velocity if spec.velocity else 0.0
+            self.parts.append((nodes, BC_CODES[spec.kind], normal, spec.friction, wall))
         # fixed and slip faces also mirror the nodes beyond them (see `mirror_grid_bc`);
         # one-sided friction walls let material leave, so they do not
         self.mirrors = [grid.mirror_pairs(spec.region.face)
@@ -31,27 +33,29 @@ class GridBoundaries:
         self._arrays = None
 
     def _build(self, active):
-        nodes, kinds, normals, mus = [], [], [], []
+        nodes, kinds, normals, mus, walls = [], [], [], [], []
         for j in active:
-            nd, kind, normal, mu = self.parts[j]
+            nd, kind, normal, mu, wall = self.parts[j]
             nodes.append(nd)
             kinds.append(np.full(len(nd), kind, np.int64))
             normals.append(np.tile(normal, (len(nd), 1)))
             mus.append(np.full(len(nd), mu))
+            walls.append(np.tile(wall, (len(nd), 1)))
         if not nodes:
-            return (np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros((0, 3)), np.zeros(0))
+            return (np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros((0, 3)), np.zeros(0),
+                    np.zeros((0, 3)))
         return (np.concatenate(nodes), np.concatenate(kinds), np.concatenate(normals),
-                np.concatenate(mus))
+                np.concatenate(mus), np.concatenate(walls))
 
     def apply(self, time, vel, dv):
         active = tuple(j for j, s in enumerate(self.specs) if time < s.until)
         if active != self.active_key:
             self._arrays = self._build(active)
             self.active_key = active
-        node, kind, normal, mu = self._arrays
+        node, kind, normal, mu, wall = self._arrays
         if len(node):
-            apply_grid_bc(self.grid.dim, node, kind, normal, mu, vel, dv)
+            apply_grid_bc(self.grid.dim, node, kind, normal, mu, wall, vel, dv)
         for j in active:
             if self.mirrors[j] is not None and len(self.mirrors[j][0]):
-                _, code, normal, _ = self.parts[j]
-                mirror_grid_bc(self.grid.dim, *self.mirrors[j], code, normal, vel, dv)
+                _, code, normal, _, wall = self.parts[j]
+                mirror_grid_bc(self.grid.dim, *self.mirrors[j], code, normal, wall, vel, dv)
