@@ -41,7 +41,8 @@ def run_point(dist, study, method, level, quick):
            "level": level, "knob": study["knob_of"](level), "note": ""}
     try:
         sim, secs, res = study["run"](dist, method, level, quick)
-        row.update(cost(sim, secs), error=res["error"], aux=res["aux"])
+        row.update(cost(sim, secs), error=res["error"], aux=res["aux"],
+                   series=res.get("series"))
     except RunError as exc:
         row.update(error=np.nan, aux=np.nan, note=f"failed: {exc}")
     return row
@@ -109,6 +110,8 @@ def run(args, dist):
         rows = sweep(dist, study, args.quick, log)
         if root:
             write_csv(os.path.join(args.out, f"{study['key']}.csv"), rows)
+            if study.get("series"):  # a time series per run (the dam break's wall gauge)
+                report.plot_series(args.out, study, rows, readme=args.readme)
     wall = dist.max(time.perf_counter() - t0)
     if root:
         meta = os.path.join(args.out, "sweep.json")

@@ -140,7 +140,13 @@ PLATE = dict(
 KO_T = np.array([0.381, 0.769, 1.153, 1.537, 1.935])
 KO_Z = np.array([1.111, 1.252, 1.505, 1.892, 2.241])
 G = 9.81
-T_END = 0.44  # s, just past T = 1.935
+T_END = 1.0  # s: T = 4.4, past the surge's impact on the far wall (x = 4) at T ~ 3
+#: the pressure gauge on the far wall, y = 0.2 (a tenth of the column's height), sampled
+#: every GAUGE_DT s: the Shepard average of the water particles' pressure within GAUGE_R
+#: spacings of the wall point (particles sit half a spacing off the wall)
+GAUGE = (4.0, 0.2)
+GAUGE_DT = 0.005
+GAUGE_R = 2.0
 
 
 def _dam_mpm(dx, flip=1.0, velocity_update="flip"):
@@ -152,7 +158,7 @@ def _dam_mpm(dx, flip=1.0, velocity_update="flip"):
     if velocity_update == "flip":
         mpm["flip"] = flip
     sc = Scene(2, grid=dict(origin=[0.0, 0.0], cell_size=c,
-                            cells=[int(round(4.0 / c)), int(round(2.6 / c))]),
+                            cells=[int(round(4.0 / c)), int(round(4.0 / c))]),
                gravity=[0, -G], time=dict(end=T_END, cfl=0.3),
                mpm=mpm, parallel=dict(axis="x", balance_every=50))
     sc.material("water", model="tait", rho=1000.0, kappa=560571.4, gamma=7.0, mu=0.0)
@@ -162,24 +168,44 @@ def _dam_mpm(dx, flip=1.0, velocity_update="flip"):
     return sc
 
 
+def gauge_pressure(sim, dx):
+    """Pressure at `GAUGE` (Shepard average over the water particles within GAUGE_R dx,
+    weights (1 - r/R)^2), over all ranks; 0 when no water is near."""
+    p = sim.particles
+    n = p.n_owned
+    water = p["body"][:n] == 0
+    x, sigma = p["x"][:n][water], p["sigma"][:n][water]
+    r = np.hypot(x[:, 0] - GAUGE[0], x[:, 1] - GAUGE[1]) / (GAUGE_R * dx)
+    w = np.clip(1.0 - r, 0.0, None) ** 2
+    pressure = -(sigma[:, 0, 0] + sigma[:, 1, 1] + sigma[:, 2, 2]) / 3.0
+    num, den = sim.dist.sum(float(w @ pressure)), sim.dist.sum(float(w.sum()))
+    return num / den if den > 0 else 0.0
+
+
 def run_dam(dist, m, dx, quick):
     if m["family"] == "MPM":
         sc = _dam_mpm(dx, m.get("flip", 1.0), m.get("velocity_update", "flip"))
     else:
-        sc = sph_dam_break(dx=dx, end=T_END, balance_every=50, axis="x")
+        sc = sph_dam_break(dx=dx, end=T_END, balance_every=50, axis="x", wall_height=4.0)
     sim = sc.simulation(dist=dist)
     hist = [(0.0, 1.0)]
+    gauge = [(0.0, 0.0)]
 
     def track(s):  # front = largest water-particle x plus half a spacing (1 at t = 0)
         p = s.particles
         water = p["body"] == 0
         xf = p["x"][water, 0].max() if water.any() else -np.inf
         hist.append((s.time, s.dist.max(float(xf)) + 0.5 * dx))
+        if s.time >= gauge[-1][0] + GAUGE_DT - 1e-12:
+            gauge.append((s.time, gauge_pressure(s, dx)))
 
     secs = advance(sim, T_END, track)
     t, xf = np.array(hist).T
     z = np.interp(KO_T / np.sqrt(2 * G), t, xf)
-    return sim, secs, {"error": float(np.max(np.abs(z / KO_Z - 1.0))), "aux": float(z[-1])}
+    tg, pg = np.array(gauge).T
+    series = {"T": (tg * np.sqrt(2 * G)).tolist(), "p / (rho g L)": (pg / (1000.0 * G)).tolist()}
+    return sim, secs, {"error": float(np.max(np.abs(z / KO_Z - 1.0))), "aux": float(z[-1]),
+                       "series": series}
 
 
 DAM = dict(
@@ -200,5 +226,7 @@ DAM = dict(
                   transfer="usl", velocity_update="mls")],
     levels={"full": [0.05, 0.035, 0.025, 0.0177], "quick": [0.1, 0.05]},
     knob_of=lambda dx: dx / 0.05, run=run_dam,
+    series=dict(title="Dam break: pressure on the far wall at y = 0.2 (a tenth of the "
+                      "column height)", x="T", y="p / (rho g L)"),
     not_applicable={"SPH TL": "a fluid has no reference configuration",
                     "coupled": "one fluid, no solid to couple"})
