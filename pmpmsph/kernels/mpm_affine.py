@@ -25,7 +25,7 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.tensor import block_inverse
-from .shapes import CPDI, CUBIC, LINEAR, QUADRATIC, cpdi_domain, n_corners, node_counts, stencil
+from .shapes import CUBIC, LINEAR, QUADRATIC, cpdi_domain, local_layout, n_corners, stencil
 
 
 @njit
@@ -38,6 +38,25 @@ def _first_nodes(base, st, off, dim):
         rest -= q * st[a]
         first[a] = q + off[a]
     return first
+
+
+@njit(inline="always")
+def node_offset(first, i, j, k, X, dx, r):
+    """r = x_I - x_p for the node (i, j, k) of a stencil whose first node is `first` (global
+    indices per axis), the particle at X (cell units from global node 0)."""
+    r[0] = (first[0] + i - X[0]) * dx
+    r[1] = (first[1] + j - X[1]) * dx
+    r[2] = (first[2] + k - X[2]) * dx
+
+
+@njit
+def _layout(dim_tag, kind_tag, strides, offset, n_nodes, inv_dx):
+    """(dim, shape kind, strides, offset, nodes per axis, dx, D^-1 of a B-spline or 0)."""
+    dim = len(dim_tag)
+    kind = len(kind_tag) - 1
+    st, off, nax = local_layout(dim, strides, offset, n_nodes)
+    dx = 1.0 / inv_dx
+    return dim, kind, st, off, nax, dx, _bspline_inverse_d(kind, dx)
 
 
 @njit
@@ -59,18 +78,11 @@ def p2g_affine(dim_tag, kind_tag, mls, x, v, C, mass, vol, sigma, fext, lp, F, p
     D^-1 N_I (x_I - x_p) (`mls`, Hu 2018 eq. 18). Arguments as `kernels.mpm.p2g`: `gforce`
     None and `force_dt` = dt fold the force into the momentum (p + dt f).
     """
-    dim = len(dim_tag)
-    kind = len(kind_tag) - 1
-    st = np.zeros(3, np.int64)
-    st[:dim] = strides
-    off = np.zeros(3, np.int64)
-    off[:dim] = offset
-    nax = node_counts(dim, strides, gmass.shape[1])
-    dom = np.zeros((2, 3, 3))
-    dx = 1.0 / inv_dx
-    dinv = _bspline_inverse_d(kind, dx)
-    X = np.zeros(3)
-    r = np.zeros(3)
+    dim, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
+                                                 gmass.shape[1], inv_dx)
+    dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)
+    X = np.zeros(3)  # the particle, in cell units from global node 0
+    r = np.zeros(3)  # x_I - x_p
     g = np.zeros(3)
     fe = np.zeros(3)
     mom = np.zeros(3)
@@ -93,9 +105,7 @@ def p2g_affine(dim_tag, kind_tag, mls, x, v, C, mass, vol, sigma, fext, lp, F, p
                     for k in range(n2):
                         node = base + i * st[0] + j * st[1] + k * st[2]
                         N = w0[i] * w1[j] * w2[k]
-                        r[0] = (first[0] + i - X[0]) * dx
-                        r[1] = (first[1] + j - X[1]) * dx
-                        r[2] = (first[2] + k - X[2]) * dx
+                        node_offset(first, i, j, k, X, dx, r)
                         if mls:
                             for b in range(3):
                                 g[b] = dinv * N * r[b]
@@ -134,18 +144,11 @@ def g2p_affine(dim_tag, kind_tag, mls, x, v, C, lp, Fdom, pfield, gvel, origin, 
     `kernels.mpm.g2p` with `Lp = Lout` then updates F and the stress. Returns the index of
     the first particle that left the box [lo, hi] (or -1).
     """
-    dim = len(dim_tag)
-    kind = len(kind_tag) - 1
-    st = np.zeros(3, np.int64)
-    st[:dim] = strides
-    off = np.zeros(3, np.int64)
-    off[:dim] = offset
-    nax = node_counts(dim, strides, gvel.shape[1])
-    dom = np.zeros((2, 3, 3))
-    dx = 1.0 / inv_dx
-    dinv = _bspline_inverse_d(kind, dx)
-    X = np.zeros(3)
-    r = np.zeros(3)
+    dim, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
+                                                 gvel.shape[1], inv_dx)
+    dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)
+    X = np.zeros(3)  # the particle, in cell units from global node 0
+    r = np.zeros(3)  # x_I - x_p
     vp = np.zeros(3)
     B = np.zeros((3, 3))
     G = np.zeros((3, 3))
@@ -176,9 +179,7 @@ def g2p_affine(dim_tag, kind_tag, mls, x, v, C, lp, Fdom, pfield, gvel, origin, 
                         gN0 = d0[i] * w1[j] * w2[k] * inv_dx
                         gN1 = w0[i] * d1[j] * w2[k] * inv_dx
                         gN2 = w0[i] * w1[j] * d2[k] * inv_dx
-                        r[0] = (first[0] + i - X[0]) * dx
-                        r[1] = (first[1] + j - X[1]) * dx
-                        r[2] = (first[2] + k - X[2]) * dx
+                        node_offset(first, i, j, k, X, dx, r)
                         for a in range(dim):
                             u = gvel[fld, node, a]
                             vp[a] += N * u

@@ -283,6 +283,17 @@ def stencil(kind_tag, dim, x, lp, F, dom, p, c, origin, inv_dx, st, off, nax):
     return particle_stencil(kind_tag, dim, x, lp, p, origin, inv_dx, st, off)
 
 
+@njit
+def local_layout(dim, strides, offset, n_nodes):
+    """(strides, offset, nodes per axis) of a local grid padded to 3 axes (unused axes: 0, 0,
+    1), the form the stencils take (`particle_stencil`)."""
+    st = np.zeros(3, np.int64)
+    st[:dim] = strides
+    off = np.zeros(3, np.int64)
+    off[:dim] = offset
+    return st, off, node_counts(dim, strides, n_nodes)
+
+
 @njit(inline="always")
 def node_counts(dim, strides, n_nodes):
     """Nodes per axis of the local grid (3 entries, 1 beyond dim) from its C-order strides."""
