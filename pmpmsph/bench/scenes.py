@@ -3,6 +3,8 @@
 Shared by the accuracy bench (`bench/accuracy.py`) and the tests (tests/parallel/scenes.py
 re-exports them), so a scene is defined once. The defaults are the set-ups the tests pin.
 """
+import numpy as np
+
 from pmpmsph import Scene
 
 COPPER = dict(model="linear_elastic", E=128e9, nu=0.3, rho=8790.0)
@@ -277,9 +279,52 @@ def couette_exact(y, t, nu, terms=400):
     """u / U of the Couette start-up between y = 0 (at rest) and y = 1 (sliding at U), from
     rest: y - 2/pi sum_k (-1)^(k+1)/k sin(k pi y) exp(-k^2 pi^2 nu t) (separation of
     variables; the series of y itself at t = 0)."""
-    import numpy as np
-
     k = np.arange(1, terms + 1)[:, None]
     y = np.asarray(y, float)[None, :]
     return (y - 2.0 / np.pi * np.sum((-1.0) ** (k + 1) / k * np.sin(k * np.pi * y)
                                      * np.exp(-(k * np.pi) ** 2 * nu * t), axis=0))[0]
+
+
+def coupled_piston(spacing=0.01, period=0.2, depth=0.2, thickness=0.1, kappa=2e4,
+                   end=1.0, velocity=None, gravity=-9.81):
+    """A coupled scene periodic along x: SPH water (Tait, rho0 = 997) of `depth` on a
+    no-slip dummy floor, under an MPM ice layer (neo-Hookean, rho = 917) of `thickness`
+    that spans the period, so the water has no free surface: the layer is a piston on a
+    compressible column. Started in the hydrostatic state of an open column, it sinks and
+    settles where the water's pressure under it carries its weight (`piston_equilibrium`).
+    `velocity`: an initial velocity of water and layer, and the floor's (moving) one
+    (without gravity: a uniform translation through the period). Grid cells of two spacings, periodic along x."""
+    sp = spacing
+    cell = 2.0 * sp
+    floor = 4 * sp
+    below = 2 * cell + floor
+    cells_y = int(round((below + depth + thickness + 2 * cell) / cell))
+    motion = {} if velocity is None else {"velocity": list(velocity)}
+    sc = Scene(2, grid=dict(origin=[0.0, -below], cell_size=cell,
+                            cells=[int(round(period / cell)), cells_y], periodic=["x"]),
+               time=dict(end=end, cfl=0.2), gravity=[0.0, gravity],
+               mpm=dict(shape="gimp", transfer="musl", flip=0.0),
+               sph=dict(h_factor=1.3, integrator="predictor_corrector", walls="no_slip",
+                        hydrostatic=gravity != 0.0, viscosity=dict(alpha=0.1, beta=0.0)),
+               parallel=dict(axis="y", balance_every=0))
+    sc.material("ice", model="neo_hookean", E=2e5, nu=0.3, rho=917.0)
+    sc.material("water", model="tait", rho=997.0, kappa=kappa, gamma=7.0, mu=0.98)
+    sc.body(name="water", method="sph", material="water", shape="box", min=[0.0, 0.0],
+            max=[period, depth], spacing=sp, **motion)
+    sc.body(name="layer", method="mpm", material="ice", shape="box", min=[0.0, depth],
+            max=[period, depth + thickness], spacing=sp, **motion)
+    sc.body(name="floor", method="sph", wall=True, material="water", shape="box",
+            min=[0.0, -floor], max=[period, 0.0], spacing=sp,
+            **(dict(motion, moving=True) if motion else {}))
+    return sc
+
+
+def piston_equilibrium(water_mass, load, rho0=997.0, kappa=2e4, gamma=7.0, g=9.81):
+    """Height of a Tait water column of `water_mass` per unit width under the pressure
+    `load` at its top, at rest: dp/dy = -rho g with rho = rho0 (1 + p/kappa)^(1/gamma)
+    (seed 003, eq. 50) holds m(p) = (int of rho dy from the top) = (p - load)/g of water
+    above the level at pressure p, so the bottom is at p_b = load + g water_mass and the
+    height is int_load^p_b dp / (rho g)."""
+    p = np.linspace(load, load + g * water_mass, 20001)
+    inv = 1.0 / (rho0 * (1.0 + p / kappa) ** (1.0 / gamma) * g)
+    return float(np.sum(0.5 * (inv[1:] + inv[:-1]) * np.diff(p)))

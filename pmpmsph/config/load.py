@@ -317,15 +317,10 @@ def _axes_list(t, key, dim):
     return tuple(sorted(axes.index(n) for n in names))
 
 
-def _check_periodic(periodic, domain, bodies, grid, key="domain.periodic"):
-    """A periodic axis of an SPH scene: no grid (MPM and coupled scenes are not periodic
-    yet), and every body that spans the period fills it with a whole number of spacings (a
+def _check_periodic(periodic, domain, bodies, key="domain.periodic"):
+    """The periodic axes of the particles of an SPH or coupled scene: no wall closes one at
+    an end, and every body that spans the period fills it with a whole number of spacings (a
     lattice that does not tile the period leaves a seam of wrong density)."""
-    if not periodic:
-        return
-    if grid is not None:
-        raise ConfigError(key, "periodic axes are for SPH scenes (a [domain], no [grid]) in "
-                          "this version")
     lo, hi = domain
     for axis in periodic:
         length = hi[axis] - lo[axis]
@@ -455,25 +450,32 @@ def case_from_dict(data, name="case", text=""):
                           "and the updated formulation")
     dom_t = root.sub("domain", None)
     periodic = ()
+    periodic_key = "domain.periodic"
     if dom_t is not None:
         domain, periodic = _domain(dom_t, dim)
-        _check_periodic(periodic, domain, bodies, grid)
-        if periodic and sph is not None and sph.formulation == "total":
-            raise ConfigError("domain.periodic", "total-Lagrangian SPH keeps its reference "
-                              "neighbours: periodic axes are for updated-Lagrangian SPH")
-        for axis in periodic:  # images of images would meet: 3 cells of the support 2h
-            length = domain[1][axis] - domain[0][axis]
-            if sph is not None and length < 6.0 * sph.h:
-                raise ConfigError("domain.periodic", f"the period {length:g} along "
-                                  f"{'xyz'[axis]} is shorter than 6 h = {6.0 * sph.h:g} "
-                                  "(three kernel supports): lengthen the domain")
+        if periodic and grid is not None:
+            raise ConfigError(periodic_key, "a scene with a [grid] is periodic along the "
+                              "grid's periodic axes ([grid] periodic), over the grid's length")
     elif grid is not None:
         domain = (grid.origin, grid.upper)
+        if has_sph:  # a coupled scene: the particles share the grid's period
+            periodic, periodic_key = grid.periodic, "grid.periodic"
     elif has_sph:
         raise ConfigError("domain", "an SPH scene without a [grid] needs a [domain] box "
                           "(min, max) that the particles stay in")
     else:
         domain = None
+    if periodic:
+        _check_periodic(periodic, domain, bodies, periodic_key)
+        if sph is not None and sph.formulation == "total":
+            raise ConfigError(periodic_key, "total-Lagrangian SPH keeps its reference "
+                              "neighbours: periodic axes are for updated-Lagrangian SPH")
+        for axis in periodic:  # images of images would meet: 3 cells of the support 2h
+            length = domain[1][axis] - domain[0][axis]
+            if sph is not None and length < 6.0 * sph.h:
+                raise ConfigError(periodic_key, f"the period {length:g} along "
+                                  f"{'xyz'[axis]} is shorter than 6 h = {6.0 * sph.h:g} "
+                                  "(three kernel supports): lengthen the domain")
     boundaries = tuple(_boundary(bt, dim) for bt in root.subs("boundaries"))
     for b in boundaries:
         if grid is None:
@@ -486,9 +488,6 @@ def case_from_dict(data, name="case", text=""):
         if b.region.face and "xyz".index(b.region.face[0]) in grid.periodic:
             raise ConfigError(f"{b.key}.face", f"{b.region.face} is an end of the periodic "
                               f"axis {b.region.face[0]}: a periodic axis has no ends")
-    if grid is not None and grid.periodic and has_sph:
-        raise ConfigError("grid.periodic", "periodic grids are for MPM scenes in this "
-                          "version (SPH scenes: [domain] periodic; coupled scenes: not yet)")
     loads = tuple(_load(lt, dim, names) for lt in root.subs("loads"))
     if len({ld.ramp for ld in loads}) > 1:
         raise ConfigError("loads[1].ramp", "all loads share one ramp time in this version")

@@ -186,6 +186,7 @@ class Coupling:
                        g.origin, g.inv_dx, g.strides, shape, mark[0])
         if self.mpm.halo_enabled:
             self.mpm.halo.sum([mark])
+        g.fold_periodic([mark])  # a cell at one end of a periodic axis borders the other
         return mark[0], shape
 
     def prepare(self):

@@ -18,8 +18,8 @@ one end re-enter at the other.
    solution within 2 % of U at t = 0.1, 0.5 and 2.5 (steady) at 32 cells across, APIC and
    MLS. Measured: APIC 2.20 / 1.01 / 0.76 % at 16, 1.26 / 0.57 / 0.45 % at 32, 0.66 / 0.28 /
    0.22 % at 64 cells (first order); MLS 0.69 / 0.31 / 0.25 %; FLIP 5.6 / 2.9 / 2.6 % at 32.
-4. Bad input names the key: a boundary on an end of a periodic axis, a periodic grid in a
-   scene with SPH, fewer than 8 cells along a periodic axis, a lid velocity with a normal
+4. Bad input names the key: a boundary on an end of a periodic axis, fewer than 8 cells
+   along a periodic axis, a lid velocity with a normal
    component or on a face that is not `fixed`.
 """
 import dataclasses
@@ -123,9 +123,4 @@ def test_bad_periodic_grids_and_lids_name_the_key():
     assert _bad(lambda sc: sc.boundary(face="y+", type="slip",
                                        velocity=[1.0, 0.0])) == "boundaries[1].velocity"
     assert _bad(lambda sc: sc.data["grid"].update(cells=[6, 16])) == "grid.periodic"
-
-    def with_sph(sc):
-        sc.data["bodies"][0]["method"] = "sph"
-        sc.data["bodies"][0]["spacing"] = 0.05
-        del sc.data["bodies"][0]["ppc"]
-    assert _bad(with_sph) == "grid.periodic"
+    # (SPH and coupled scenes with a periodic grid: tests/verification/test_coupled_periodic.py)
