@@ -223,9 +223,9 @@ def mpm_cavity(n=32, end=20.0, velocity_update="apic", reynolds=100.0, c0=10.0,
     sc.material("water", model="tait", rho=rho0, kappa=c0 * c0 * rho0 / 7.0, gamma=7.0,
                 mu=rho0 / reynolds)
     sc.body(name="fluid", material="water", shape="box", min=[0, 0], max=[1, 1], ppc=2)
+    sc.boundary(face="y+", type="fixed", velocity=[1.0, 0.0])
     for face in ("x-", "x+", "y-"):
         sc.boundary(face=face, type="fixed")
-    sc.boundary(face="y+", type="fixed", velocity=[1.0, 0.0])
     return sc
 
 
