@@ -29,9 +29,9 @@ COLUMNS = ["scene", "method", "family", "level", "knob", "error", "aux", "partic
 def studies():
     from .accuracy_1d import BAR, REVERSAL, SPRING, STRESS
     from .accuracy_2d import DAM, DISKS, PLATE
-    from .accuracy_fluids import CAVITY
+    from .accuracy_fluids import CAVITY, COUETTE
 
-    return [SPRING, DISKS, REVERSAL, STRESS, PLATE, BAR, DAM, CAVITY]
+    return [SPRING, DISKS, REVERSAL, STRESS, PLATE, BAR, DAM, CAVITY, COUETTE]
 
 
 def run_point(dist, study, method, level, quick):
