@@ -78,13 +78,15 @@ class Simulation(Restart, Rebalancing):
         if self.balancer is not None:  # seeding used equal slabs: balance before step 1
             with self.timers.phase("balance"):
                 self.rebalance()
-        if self.sph is not None and case.sph.hydrostatic:  # initial condition (collective)
+        # the hydrostatic initial condition (collective): [sph] hydrostatic starts the SPH
+        # fluids and, in a coupled scene, the MPM ones too; [mpm] hydrostatic the MPM ones
+        sph_start = self.sph is not None and case.sph.hydrostatic
+        if sph_start:
             self.sph.hydrostatic_start()
-            if self.mpm is not None:  # and the MPM fluids of a coupled scene
-                from .physics.hydrostatic import hydrostatic_mpm
+        if self.mpm is not None and (sph_start or case.mpm.hydrostatic):
+            from .physics.hydrostatic import hydrostatic_mpm
 
-                hydrostatic_mpm(case, self.particles, self.materials, case.gravity,
-                                self.dist)
+            hydrostatic_mpm(case, self.particles, self.materials, case.gravity, self.dist)
         self.h = min(min(case.grid.cell_size) if case.grid else np.inf,
                      case.sph.h if case.sph else np.inf)
         self.dt = self._initial_dt()

@@ -56,6 +56,16 @@ def main(argv=None):
                     help="copy the figures to docs/accuracy/ and rewrite the README section")
     ac.add_argument("--report-only", action="store_true",
                     help="rebuild plots and summary from the CSVs in --out")
+    fl = sub.add_parser("floats", help="floating blocks in every method combination "
+                        "against Archimedes (floats.py)")
+    fl.add_argument("--combos", nargs="+", default=None, help="e.g. mpm_in_sph (default: all)")
+    fl.add_argument("--blocks", type=int, nargs="+", default=None,
+                    help="indices into floats.BLOCKS (default: all)")
+    fl.add_argument("--spacing", type=float, default=0.005)
+    fl.add_argument("--end", type=float, default=3.0)
+    fl.add_argument("--velocity-update", default="apic", choices=["apic", "pic", "flip"],
+                    help="of the MPM bodies (pic: the FLIP blend at 0)")
+    fl.add_argument("--out", default="bench_results")
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "io-worker":
         from .io import worker
@@ -71,6 +81,10 @@ def main(argv=None):
         from .accuracy import run
 
         return run(args, Distributor())
+    if args.command == "floats":
+        from .floats import run
+
+        return run(args)
     if args.command == "io":
         from .io import run
 

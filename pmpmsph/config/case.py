@@ -55,6 +55,7 @@ class MPMSpec:
     contact_gap: float = 1.0   # multi-field contact acts within this many times the
     # nodal centre-of-mass separation of two touching bodies (Nairn's displacement check)
     cpdi_reach: int = 2        # CPDI: the largest domain half-extent (cells) the grid covers
+    hydrostatic: bool = False  # MPM fluid bodies start at rest in the hydrostatic state
     deformation: str = "auto"  # what an MPM particle stores of its motion: "F" (the full
     # deformation gradient) or "J" (its determinant only; enough for fluids, whose stress
     # depends on J and the velocity gradient); "auto": J when every MPM material is a fluid

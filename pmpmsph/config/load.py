@@ -287,6 +287,17 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     return spec
 
 
+def _check_mpm_hydrostatic(bodies, materials, gravity):
+    """`[mpm] hydrostatic` needs gravity and an MPM body of a Tait fluid to act on."""
+    if not any(gravity):
+        raise ConfigError("mpm.hydrostatic", "a hydrostatic start needs gravity (the case "
+                          "has none)")
+    if not any(b.method == "mpm" and not b.wall and materials[b.material].type_code == 5
+               for b in bodies):
+        raise ConfigError("mpm.hydrostatic", "no MPM body of a tait fluid to start "
+                          "hydrostatic (it sets the MPM fluids' initial density and pressure)")
+
+
 def _method_region(t, dim):
     method = t.string("method", choices=METHODS)
     geom = _geometry(t, dim)
@@ -389,6 +400,7 @@ def case_from_dict(data, name="case", text=""):
         contact_gap=mpm_t.number("contact_gap", 1.0, min=0.0),
         cpdi_reach=mpm_t.number("cpdi_reach", 2, integer=True, min=1, max=8),
         deformation=mpm_t.string("deformation", "auto", choices=("auto", "F", "J")),
+        hydrostatic=mpm_t.boolean("hydrostatic", False),
     )
     if mpm.velocity_update != "flip" and mpm_t.has("flip"):
         raise ConfigError(mpm_t.key("flip"), "applies to velocity_update = \"flip\" only "
@@ -493,6 +505,8 @@ def case_from_dict(data, name="case", text=""):
         raise ConfigError("loads[1].ramp", "all loads share one ramp time in this version")
     prescribed = tuple(_prescribed(pt, dim, names) for pt in root.subs("prescribed"))
     gravity = root.vector("gravity", dim, (0.0,) * dim)
+    if mpm.hydrostatic:
+        _check_mpm_hydrostatic(bodies, materials, gravity)
 
     tt = root.sub("time")
     end = tt.number("end", min_open=0.0)

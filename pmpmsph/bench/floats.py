@@ -1,0 +1,199 @@
+"""Floating blocks in every method combination (issue 19, item 1).
+
+A rectangular block (neo-Hookean, E = 2e5, nu = 0.3, density `ratio` x 997) of `width` x
+`height` is dropped from `drop` above the surface of Tait water (rho0 = 997, kappa = 2e4,
+gamma = 7, mu = 0.98) `depth` deep in a tank `tank` wide, started hydrostatic. Combinations
+(block in water): "mpm_in_sph" (SPH water in a tank of dummy walls; the coupling's fluid-solid
+pairs), "sph_in_mpm" (an SPH solid in MPM water; physics/sph_solid.py), "mpm_in_mpm" (both
+MPM, one velocity field per body, Bardenhagen contact), "sph_in_sph" (both SPH).
+
+Reference: Archimedes' principle in the Tait water at rest: the draft d of the rectangle of
+the block's seeded mass m per unit thickness, width * int_0^d rho(z) dz = m with rho(z) the
+hydrostatic density at depth z (physics/hydrostatic.py). Measured from the block's own
+geometry: its bottom face (the mean of its lowest row of points minus half a spacing) below
+the far-field surface (the water's top rows, more than a block width from the block's
+centre, plus half a spacing). `float_run` returns the submerged fraction d/height against
+the reference and the block's settling (its centre-of-mass vertical speed at the end over
+the impact speed sqrt(2 g drop)).
+"""
+import math
+
+import numpy as np
+
+from pmpmsph import Scene
+
+from ..physics.hydrostatic import tait_hydrostatic_density
+
+COMBOS = ("mpm_in_sph", "sph_in_mpm", "mpm_in_mpm", "sph_in_sph")
+RHO_F, KAPPA, GAMMA, MU, G = 997.0, 2.0e4, 7.0, 0.98, 9.81
+#: (width, height, density ratio, drop): none is a shipped case's block, and each floats
+#: upright (width/height above sqrt(6 s (1 - s)), the metacentre above the centre of mass)
+BLOCKS = ((0.10, 0.06, 0.80, 0.010), (0.08, 0.04, 0.50, 0.020), (0.14, 0.04, 0.95, 0.005),
+          (0.12, 0.06, 0.65, 0.015), (0.06, 0.05, 0.90, 0.010), (0.16, 0.08, 0.70, 0.005))
+
+
+def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, depth=0.2,
+                spacing=0.005, end=3.0, cell_spacings=4, velocity_update="apic",
+                contact_gap=1.5):
+    """The scene of one float (module doc); grid cells of `cell_spacings` spacings; the MPM
+    bodies' `velocity_update` ("apic", or "pic": the FLIP blend at 0); with MPM water, the
+    multi-field contact's `contact_gap` (0: one velocity field for water and block)."""
+    block_method, water_method = combo.split("_in_")
+    sp = spacing
+    cell = tank / round(tank / (cell_spacings * sp))  # nodes on the tank's faces
+    walls = 4 * sp if water_method == "sph" else 0.0
+    pad = int(math.ceil(walls / cell)) + 1
+    top = max(depth, depth + drop + height) + 2 * cell
+    cells = [int(round(tank / cell)) + 2 * pad, int(math.ceil(top / cell)) + pad]
+    origin = [-pad * cell, -pad * cell]
+    coupled = block_method != water_method
+    sections = dict(grid=dict(origin=origin, cell_size=cell, cells=cells),
+                    time=dict(end=end, cfl=0.2), gravity=[0.0, -G],
+                    parallel=dict(balance_every=0))
+    if "mpm" in combo:
+        mpm = dict(shape="gimp", transfer="musl")
+        if velocity_update == "pic":
+            mpm["flip"] = 0.0
+        else:
+            mpm["velocity_update"] = velocity_update
+        if water_method == "mpm":
+            if contact_gap > 0.0:  # one velocity field per body, frictionless contact
+                mpm.update(contact="multi", friction=0.0, contact_gap=contact_gap)
+            if not coupled:
+                mpm["hydrostatic"] = True
+        sections["mpm"] = mpm
+    if "sph" in combo:
+        sections["sph"] = dict(h_factor=1.3, integrator="predictor_corrector",
+                               hydrostatic=True, viscosity=dict(alpha=0.1, beta=0.0))
+        if water_method == "sph":
+            sections["sph"]["walls"] = "no_slip"
+    if block_method == water_method == "sph":  # no grid: a [domain] box
+        del sections["grid"]
+        sections["domain"] = dict(min=origin, max=[origin[0] + cells[0] * cell,
+                                                   origin[1] + cells[1] * cell])
+    sc = Scene(2, **sections)
+    sc.material("ice", model="neo_hookean", E=2e5, nu=0.3, rho=ratio * RHO_F)
+    sc.material("water", model="tait", rho=RHO_F, kappa=KAPPA, gamma=GAMMA, mu=MU)
+    sc.body(name="water", method=water_method, material="water", shape="box",
+            min=[0.0, 0.0], max=[tank, depth], spacing=sp)
+    x0 = 0.5 * (tank - width)
+    sc.body(name="block", method=block_method, material="ice", shape="box",
+            min=[x0, depth + drop], max=[x0 + width, depth + drop + height], spacing=sp)
+    if water_method == "sph":
+        for name, lo, hi in (("floor", [-walls, -walls], [tank + walls, 0.0]),
+                             ("left", [-walls, 0.0], [0.0, top]),
+                             ("right", [tank, 0.0], [tank + walls, top])):
+            sc.body(name=name, method="sph", wall=True, material="water", shape="box",
+                    min=lo, max=hi, spacing=sp)
+    if "mpm" in combo:  # the tank's faces on the grid, for MPM water or an MPM block
+        span = [origin[1] - cell, origin[1] + (cells[1] + 1) * cell]
+        wide = [origin[0] - cell, origin[0] + (cells[0] + 1) * cell]
+        eps = 1e-3 * sp
+        for box, normal in ((dict(min=[wide[0], -eps], max=[wide[1], eps]), [0.0, -1.0]),
+                            (dict(min=[-eps, span[0]], max=[eps, span[1]]), [-1.0, 0.0]),
+                            (dict(min=[tank - eps, span[0]], max=[tank + eps, span[1]]),
+                             [1.0, 0.0])):
+            sc.boundary(box=box, type="slip", normal=normal)
+    return sc
+
+
+def archimedes_fraction(mass, width, height):
+    """Submerged fraction d/height of a rectangle of `mass` per unit thickness floating in
+    the Tait water at rest (module doc), by bisection on d."""
+    lo, hi = 0.0, 2.0 * height
+    z = np.linspace(0.0, 1.0, 2001)
+    for _ in range(60):
+        d = 0.5 * (lo + hi)
+        rho = tait_hydrostatic_density(RHO_F, KAPPA, GAMMA, G, d * z)
+        displaced = width * d * float(np.sum(0.5 * (rho[1:] + rho[:-1]) * np.diff(z)))
+        lo, hi = (d, hi) if displaced < mass else (lo, d)
+    return 0.5 * (lo + hi) / height
+
+
+def _block_state(sim, spacing, width, tank):
+    p = sim.particles
+    n = p.n_owned
+    x, body, v, m = p["x"][:n], p["body"][:n], p["v"][:n], p["mass"][:n]
+    block = body == 1
+    yb = x[block, 1]
+    bottom = float(yb[yb < yb.min() + 0.5 * spacing].mean()) - 0.5 * spacing
+    xc = float(np.average(x[block, 0], weights=m[block]))
+    water = body == 0
+    far = water & (np.abs(x[:, 0] - xc) > width) & (x[:, 0] > 2 * spacing) & (
+        x[:, 0] < tank - 2 * spacing)
+    # the far-field surface: the top particle of each column bin of two spacings
+    bins = np.floor(x[far, 0] / (2 * spacing)).astype(int)
+    tops = [x[far][bins == b, 1].max() for b in np.unique(bins)]
+    surface = float(np.mean(tops)) + 0.5 * spacing
+    vcom = float(np.average(v[block, 1], weights=m[block]))
+    return surface - bottom, vcom, float(m[block].sum())
+
+
+def float_run(combo, dist=None, **kw):
+    """Run one float (one rank); returns a dict: fraction (mean over the last fifth of the
+    run), reference, error (relative), settle (max |v_com| over the last tenth / impact
+    speed), steps, particles."""
+    from mpi4py import MPI
+
+    from ..parallel.distributor import Distributor
+
+    args = dict(width=0.1, height=0.06, drop=0.01, tank=0.5, spacing=0.005, end=3.0)
+    args.update(kw)
+    sc = float_scene(combo, **kw)
+    sim = sc.simulation(dist=dist or Distributor(MPI.COMM_SELF), write_output=False)
+    sp, width, height, end = args["spacing"], args["width"], args["height"], args["end"]
+    drafts, speeds = [], []
+
+    def track(s):
+        if s.time >= 0.8 * end:
+            d, vc, _ = _block_state(s, sp, width, args["tank"])
+            drafts.append(d)
+        if s.time >= 0.9 * end:
+            speeds.append(abs(_block_state(s, sp, width, args["tank"])[1]))
+
+    sim.run(on_step=track)
+    _, _, mass = _block_state(sim, sp, width, args["tank"])
+    fraction = float(np.mean(drafts)) / height
+    reference = archimedes_fraction(mass, width, height)
+    impact = math.sqrt(2.0 * G * args["drop"])
+    return dict(combo=combo, fraction=fraction, reference=reference,
+                error=fraction / reference - 1.0, settle=max(speeds) / impact,
+                steps=sim.step_count, particles=sim.particles.n_owned)
+
+
+def run(args):
+    """`python -m pmpmsph.bench floats`: every block of BLOCKS in every combination; a table
+    and `<out>/floats.csv`."""
+    import csv
+    import os
+    import time
+
+    combos = args.combos or COMBOS
+    blocks = args.blocks if args.blocks is not None else range(len(BLOCKS))
+    rows = []
+    print(f"{'combination':<12}{'block (w, h, s, drop)':>28}{'fraction':>10}{'Archimedes':>11}"
+          f"{'error':>9}{'settle':>9}{'wall s':>8}")
+    for combo in combos:
+        for i in blocks:
+            w, h, s, drop = BLOCKS[i]
+            t0 = time.perf_counter()
+            try:
+                r = float_run(combo, width=w, height=h, ratio=s, drop=drop,
+                              spacing=args.spacing, end=args.end,
+                              velocity_update=args.velocity_update)
+            except Exception as exc:  # a failed run is a row of the table, not the end
+                r = dict(combo=combo, fraction=float("nan"), reference=float("nan"),
+                         error=float("nan"), settle=float("nan"), failure=str(exc))
+            r.update(block=i, wall=time.perf_counter() - t0)
+            rows.append(r)
+            print(f"{combo:<12}{str(BLOCKS[i]):>28}{r['fraction']:>10.4f}"
+                  f"{r['reference']:>11.4f}{r['error']:>+9.2%}{r['settle']:>9.3f}"
+                  f"{r['wall']:>8.1f} {r.get('failure', '')}", flush=True)
+    os.makedirs(args.out, exist_ok=True)
+    path = os.path.join(args.out, "floats.csv")
+    with open(path, "w", newline="") as fh:
+        out = csv.DictWriter(fh, fieldnames=sorted({k for r in rows for k in r}))
+        out.writeheader()
+        out.writerows(rows)
+    print(f"written {path}")
+    return 0
