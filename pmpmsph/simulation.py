@@ -65,7 +65,10 @@ class Simulation(Restart, Rebalancing):
         # seeding and the stages are local work on every rank: agreed on before any collective
         self.dist.agree("build", lambda: self._build(case))
         self.migrated = 0
-        self.migration = MigrationSchedule(self.dist, lazy=self.sph is None)
+        # lazy migration lets a particle stay a while on the rank it left; across the wrap of
+        # a periodic slab axis its position wraps at once, beyond that rank's ghosts
+        wraps = self.decomposition is not None and self.decomposition.wraps
+        self.migration = MigrationSchedule(self.dist, lazy=self.sph is None and not wraps)
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
@@ -144,13 +147,10 @@ class Simulation(Restart, Rebalancing):
             free = [a for a in range(case.dim) if a not in periodic] or list(range(case.dim))
             axis = max(free, key=lambda a: spec.cells[a])
         axis = default_axis(spec.cells) if axis is None else axis
-        if case.grid and axis in case.grid.periodic and self.dist.size > 1:
-            raise ConfigError("parallel.axis", "the slabs of an MPM grid cannot be cut along "
-                              "its periodic axis in this version: choose another axis (or run "
-                              "on one rank)")
         period = None
-        if axis in case.periodic:  # the first and last slabs are neighbours
-            period = case.domain[1][axis] - case.domain[0][axis]
+        if axis in periodic:  # the first and last slabs are neighbours
+            period = spec.cells[axis] * spec.cell_size[axis] if case.grid else (
+                case.domain[1][axis] - case.domain[0][axis])
         return Decomposition(self.dist, spec, axis=axis,
                              key="grid.cells" if case.grid else "domain", period=period)
 
@@ -351,6 +351,8 @@ class Simulation(Restart, Rebalancing):
         self.time += self.dt
         self.step_count += 1
         if due and dec is not None:
+            if dec.wraps:  # into the period, then to the owner across the wrap
+                dec.wrap(self.particles["x"][: self.particles.n_owned])
             with self.timers.phase("migration"):
                 sent, received = migrate(dec, self.particles, self.step_count)
                 self.migrated += sent

@@ -286,7 +286,7 @@ def couette_exact(y, t, nu, terms=400):
 
 
 def coupled_piston(spacing=0.01, period=0.2, depth=0.2, thickness=0.1, kappa=2e4,
-                   end=1.0, velocity=None, gravity=-9.81):
+                   end=1.0, velocity=None, gravity=-9.81, axis="y"):
     """A coupled scene periodic along x: SPH water (Tait, rho0 = 997) of `depth` on a
     no-slip dummy floor, under an MPM ice layer (neo-Hookean, rho = 917) of `thickness`
     that spans the period, so the water has no free surface: the layer is a piston on a
@@ -306,7 +306,7 @@ def coupled_piston(spacing=0.01, period=0.2, depth=0.2, thickness=0.1, kappa=2e4
                mpm=dict(shape="gimp", transfer="musl", flip=0.0),
                sph=dict(h_factor=1.3, integrator="predictor_corrector", walls="no_slip",
                         hydrostatic=gravity != 0.0, viscosity=dict(alpha=0.1, beta=0.0)),
-               parallel=dict(axis="y", balance_every=0))
+               parallel=dict(axis=axis, balance_every=0))
     sc.material("ice", model="neo_hookean", E=2e5, nu=0.3, rho=917.0)
     sc.material("water", model="tait", rho=997.0, kappa=kappa, gamma=7.0, mu=0.98)
     sc.body(name="water", method="sph", material="water", shape="box", min=[0.0, 0.0],

@@ -25,8 +25,8 @@ def default_axis(cells):
 class Decomposition:
     def __init__(self, dist, grid_spec, axis=None, faces=None, key="grid.cells", period=None):
         self.dist = dist
-        #: the length of the domain along the slab axis when that axis is periodic (SPH
-        #: scenes): the first and last slabs are then neighbours (`routes`)
+        #: the length of the domain along the slab axis when that axis is periodic: the
+        #: first and last slabs are then neighbours (`routes`; particles shifted by it)
         self.period = period
         self.spec = grid_spec
         self.axis = default_axis(grid_spec.cells) if axis is None else axis
@@ -35,16 +35,25 @@ class Decomposition:
         self.origin = float(grid_spec.origin[self.axis])
         self.pad = int(grid_spec.pad)
         self.ghost = int(grid_spec.ghost)
-        self.min_slab = self.ghost
         size = dist.size
+        #: the grid is periodic along the slab axis across ranks: node k and node k + ncells
+        #: are one node, owned once, and the first and last slabs share ghosts across the
+        #: wrap (`grid_neighbours`). Its slabs are two ghost widths thick at least, so that
+        #: every shared node is shared by two ranks only, and no slab's ghosts meet
+        #: themselves across the wrap.
+        self.wraps = (size > 1 and self.axis in tuple(getattr(grid_spec, "periodic", ()))
+                      and period is not None)
+        self.min_slab = 2 * self.ghost if self.wraps else self.ghost
         m = self.min_slab
         if self.ncells < m:
             raise ConfigError(key, f"{self.ncells} cells along axis {'xyz'[self.axis]}: the "
                               f"grid needs at least {m} there")
         if self.ncells < m * size:
             raise ConfigError(key, f"{self.ncells} cells along axis {'xyz'[self.axis]} "
-                              f"cannot make {size} slabs of at least {m} cells: use at "
-                              f"most {self.ncells // m} ranks")
+                              f"cannot make {size} slabs of at least {m} cells"
+                              + (" (two ghost widths: the grid is periodic along it)"
+                                 if self.wraps else "")
+                              + f": use at most {self.ncells // m} ranks")
         if faces is None:
             faces = np.round(np.linspace(0, self.ncells, size + 1)).astype(np.int64)
         self.faces = np.asarray(faces, dtype=np.int64)
@@ -86,6 +95,11 @@ class Decomposition:
             out.append((1, 0, self.period))
         return out
 
+    def wrap(self, x):
+        """Positions x (n, dim) back into the period along the slab axis, in place."""
+        xa = x[:, self.axis]
+        xa[:] = self.origin + np.mod(xa - self.origin, self.period)
+
     def slab_distance(self, owner):
         """How many slabs away the ranks `owner` are (around the period when periodic)."""
         d = np.abs(np.asarray(owner) - self.rank)
@@ -112,6 +126,8 @@ class Decomposition:
         r = self.rank if rank is None else rank
         lo = int(self.faces[r]) + self.pad
         hi = int(self.faces[r + 1]) + self.pad
+        if self.wraps:  # every node once: the padding and the closing node are images
+            return lo, hi
         if r == 0:
             lo = 0
         if r == self.size - 1:
@@ -119,18 +135,37 @@ class Decomposition:
         return lo, hi
 
     def local_nodes(self, rank=None):
-        """[lo, hi) of the nodes a rank stores: owned plus ghost layers inside the grid."""
+        """[lo, hi) of the nodes a rank stores: owned plus ghost layers inside the grid
+        (across the wrap of a periodic grid they run past its padding: the images)."""
         lo, hi = self.owned_nodes(rank)
+        if self.wraps:
+            return lo - self.ghost, hi + self.ghost
         total = self.ncells + 1 + 2 * self.pad
         return max(lo - self.ghost, 0), min(hi + self.ghost, total)
 
-    def overlap(self, nb):
-        """Node ranges shared with neighbour `nb` (padded global indices):
-        (my ghosts that nb owns, my owned nodes that are nb's ghosts)."""
+    def grid_neighbours(self):
+        """(side, rank, node shift) per slab face with a neighbour on the grid: the shift
+        takes the neighbour's node indices into ours (-ncells across the low wrap, +ncells
+        across the high one)."""
+        out = []
+        if self.left is not None:
+            out.append((0, self.left, 0))
+        elif self.wraps:
+            out.append((0, self.size - 1, -self.ncells))
+        if self.right is not None:
+            out.append((1, self.right, 0))
+        elif self.wraps:
+            out.append((1, 0, self.ncells))
+        return out
+
+    def overlap(self, nb, shift=0):
+        """Node ranges shared with neighbour `nb` (padded global indices, in ours: its
+        indices plus `shift`, `grid_neighbours`): (my ghosts that nb owns, my owned nodes
+        that are nb's ghosts)."""
         my_lo, my_hi = self.local_nodes()
         own_lo, own_hi = self.owned_nodes()
-        nb_lo, nb_hi = self.local_nodes(nb)
-        nb_own_lo, nb_own_hi = self.owned_nodes(nb)
+        nb_lo, nb_hi = (i + shift for i in self.local_nodes(nb))
+        nb_own_lo, nb_own_hi = (i + shift for i in self.owned_nodes(nb))
         ghosts = (max(my_lo, nb_own_lo), min(my_hi, nb_own_hi))
         shared = (max(own_lo, nb_lo), min(own_hi, nb_hi))
         return ghosts, shared

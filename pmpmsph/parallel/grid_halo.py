@@ -40,22 +40,24 @@ class GridHalo:
         # (neighbour, slice sent, slice received) of each exchange, in local node indices,
         # made once: reduce sends the ghosts to their owner, broadcast the owned shared
         # nodes back, sum sends and receives every node shared with the neighbour
+        # a route is (neighbour, slice out, slice in, side of our face): on two ranks with a
+        # periodic slab axis both faces lead to the other rank, told apart by the side
         self.routes = {"reduce": [], "broadcast": [], "sum": []}
-        for nb in (decomposition.left, decomposition.right):
-            if nb is None:
-                continue
-            (g_lo, g_hi), (s_lo, s_hi) = decomposition.overlap(nb)
+        for side, nb, shift in decomposition.grid_neighbours():
+            (g_lo, g_hi), (s_lo, s_hi) = decomposition.overlap(nb, shift)
             ghost = slice(g_lo - off, g_hi - off)
             shared = slice(s_lo - off, s_hi - off)
             both = slice(min(g_lo, s_lo) - off, max(g_hi, s_hi) - off)
-            self.routes["reduce"].append((nb, ghost, shared))
-            self.routes["broadcast"].append((nb, shared, ghost))
-            self.routes["sum"].append((nb, both, both))
+            self.routes["reduce"].append((nb, ghost, shared, side))
+            self.routes["broadcast"].append((nb, shared, ghost, side))
+            self.routes["sum"].append((nb, both, both, side))
         faces, ghost = decomposition.faces, decomposition.ghost
         # no node is local to three ranks: the two ghost layers of an interior slab's
-        # neighbours stay apart (decided from the faces, so every rank decides alike)
-        self.pairwise = all(faces[r + 1] - faces[r] >= 2 * ghost
-                            for r in range(1, decomposition.size - 1))
+        # neighbours stay apart (decided from the faces, so every rank decides alike); with
+        # the wrap every slab is interior
+        inner = (range(decomposition.size) if decomposition.wraps
+                 else range(1, decomposition.size - 1))
+        self.pairwise = all(faces[r + 1] - faces[r] >= 2 * ghost for r in inner)
 
     def _view(self, arr, sl):
         blk = self.grid.block(arr)
@@ -77,20 +79,22 @@ class GridHalo:
         if bufs is None:
             bufs = [(np.empty(sum(self._view(a, out_sl).size for a in arrays)),
                      np.empty(sum(self._view(a, in_sl).size for a in arrays)))
-                    for _, out_sl, in_sl in routes]
+                    for _, out_sl, in_sl, _ in routes]
             self._buffers[key] = bufs
         reqs = []
-        for (nb, out_sl, _), (sendbuf, recvbuf) in zip(routes, bufs):
+        for (nb, out_sl, _, side), (sendbuf, recvbuf) in zip(routes, bufs):
             pos = 0
             for a in arrays:
                 view = self._view(a, out_sl)
                 sendbuf[pos:pos + view.size].reshape(view.shape)[...] = view
                 pos += view.size
-            reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag))
-            reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=tag))
+            # tagged with the sender's face: what arrives on our low face left the
+            # neighbour's high face
+            reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag + 100 * (1 - side)))
+            reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=tag + 100 * side))
             self.bytes_sent += sendbuf.nbytes
         MPI.Request.Waitall(reqs)
-        for (_, _, in_sl), (_, recvbuf) in zip(routes, bufs):
+        for (_, _, in_sl, _), (_, recvbuf) in zip(routes, bufs):
             pos = 0
             for a in arrays:
                 view = self._view(a, in_sl)

@@ -25,8 +25,11 @@ class Grid:
     origin is shifted so the kernels index local nodes directly.
     """
 
-    def __init__(self, spec, nfields=1, with_normals=False, node_range=None):
+    def __init__(self, spec, nfields=1, with_normals=False, node_range=None, folded=None):
         self.spec = spec
+        #: the periodic axes folded inside this grid (`fold_periodic`): all of
+        #: `spec.periodic` but a slab axis whose wrap runs between ranks (`GridHalo`)
+        self.folded = tuple(spec.periodic if folded is None else folded)
         self.dim = spec.dim
         self.pad = spec.pad
         self.dx = float(spec.cell_size[0])
@@ -66,11 +69,11 @@ class Grid:
         self.hi = np.array(spec.upper) + self.dx
 
     def fold_periodic(self, arrays):
-        """Make the grid periodic along `spec.periodic` (axes the slabs do not cut): padded
+        """Make the grid periodic along `folded` (axes whose wrap is inside the rank): padded
         node g and g + cells are one node, so the nodal sums of the padded layers beyond each
         end are added into the nodes they stand for and the full sums copied back. After
         P2G; the solve is node-local, so the copies then hold the same velocities."""
-        for a in self.spec.periodic:
+        for a in self.folded:
             n = int(self.spec.cells[a])
             total = n + 1 + 2 * self.pad
             pairs = ((slice(0, self.pad), slice(n, n + self.pad)),         # below the start

@@ -112,8 +112,10 @@ class MPMStage:
         """(Re)build the local grid, its boundary conditions and ghost-node plan for a slab."""
         self.dec = decomposition
         lo, hi = decomposition.local_nodes()
+        folded = tuple(a for a in self.case.grid.periodic
+                       if not (decomposition.wraps and a == decomposition.axis))
         self.grid = Grid(self.case.grid, nfields=self.nfields, with_normals=self.multi,
-                         node_range=(decomposition.axis, lo, hi))
+                         node_range=(decomposition.axis, lo, hi), folded=folded)
         self.bcs = GridBoundaries(self.case.boundaries, self.grid)
         sent = self.halo.bytes_sent if hasattr(self, "halo") else 0  # a run's total
         self.halo = GridHalo(decomposition, self.grid)
@@ -247,7 +249,7 @@ class MPMStage:
         if self.halo_enabled:  # ghosts get the full sums too, so no broadcast after the solve
             with t.phase("halo"):
                 self.halo.sum(sums)
-        if self.case.grid.periodic:
+        if g.folded:
             with t.phase("halo"):
                 g.fold_periodic(sums)
 
@@ -352,13 +354,15 @@ class MPMStage:
         return bad
 
     def _wrap_periodic(self):
-        """Particles that crossed an end of a periodic axis re-enter at the other end."""
+        """Particles that crossed an end of a periodic axis folded in this rank's grid
+        re-enter at the other end (across the wrap of a slab axis they stay beyond it, near
+        the slab face, until `Simulation.step` wraps them just before they migrate)."""
         spec = self.case.grid
-        if not spec.periodic:
+        if not self.grid.folded:
             return
         n = self.n_g2p
         x = self.p["x"]
-        for a in spec.periodic:
+        for a in self.grid.folded:
             lo, length = spec.origin[a], spec.cells[a] * spec.cell_size[a]
             x[:n, a] = lo + np.mod(x[:n, a] - lo, length)
 

@@ -174,16 +174,19 @@ def test_load_balancer_reduces_imbalance_and_holds_still():
     assert list(sim.decomposition.faces) == faces
 
 
-def test_periodic_grid_on_n_ranks_equals_one_rank():
-    """An MPM grid periodic along x, the slabs cut along y: a water column on the floor,
-    thrown along x, slumps across the slab faces and flows through the periodic end
-    (`Grid.fold_periodic` on every rank's local grid, ghosts included)."""
+@pytest.mark.parametrize("axis", ["y", "x"])
+def test_periodic_grid_on_n_ranks_equals_one_rank(axis):
+    """An MPM grid periodic along x: a water column on the floor, thrown along x, slumps
+    across the slab faces and flows through the periodic end. Slabs cut along y: the wrap
+    is inside every rank (`Grid.fold_periodic` on every local grid, ghosts included); cut
+    along x: the first and last slabs share ghost nodes across the wrap
+    (`Decomposition.grid_neighbours`), particles migrate across it."""
     def scene():
         sc = Scene(2, grid=dict(origin=[0, 0], length=[1, 1], cells=[24, 24],
                                 periodic=["x"]),
                    time=dict(end=1e9, cfl=0.3), gravity=[0, -9.81],
                    mpm=dict(shape="quadratic", transfer="usl", velocity_update="apic"),
-                   parallel=dict(axis="y", balance_every=0))
+                   parallel=dict(axis=axis, balance_every=0))
         sc.material("water", model="tait", rho=1000.0, kappa=2e5, gamma=7.0, mu=0.01)
         sc.body(name="w", material="water", shape="box", min=[0.5, 0.0], max=[0.9, 0.7],
                 ppc=2, velocity=[1.5, 0.0])
@@ -201,17 +204,25 @@ def test_periodic_grid_on_n_ranks_equals_one_rank():
     assert_equals_one_rank(dist, sim, ref, ["x", "v", "J", "sigma", "C"])
 
 
-def test_periodic_coupled_scene_on_n_ranks_equals_one_rank():
+@pytest.mark.parametrize("axis", ["y", "x"])
+def test_periodic_coupled_scene_on_n_ranks_equals_one_rank(axis):
     """The coupled piston (bench/scenes.py `coupled_piston`: SPH water under an MPM ice
-    layer, both periodic along x with the grid) moving along the period, the slabs cut
-    along y: the water and the layer cross the slab faces as the layer bobs, and the seam
-    within every rank (SPH images, the grid's fold, both wraps)."""
+    layer, both periodic along x with the grid) moving along the period. Slabs cut along
+    y: the water and the layer cross the slab faces as the layer bobs, and the seam is
+    within every rank (SPH images, the grid's fold, both wraps). Cut along x: the seam runs
+    between the first and last ranks (SPH halo rows shifted by the period, ghost nodes
+    shared across the wrap), and every particle crosses it (a period of 6 cells per rank)."""
     from pmpmsph.bench.scenes import coupled_piston
 
     dist = world()
-    sim = coupled_piston(spacing=0.01, end=0.1, velocity=[1.0, 0.0]).simulation(dist=dist)
-    ref = coupled_piston(spacing=0.01, end=0.1, velocity=[1.0, 0.0]).simulation(dist=serial())
+    period = 0.2 if axis == "y" else 0.12 * max(dist.size, 2)
+    args = dict(spacing=0.01, end=0.1 if axis == "y" else 0.15, velocity=[1.0, 0.0],
+                period=period, axis=axis)
+    sim = coupled_piston(**args).simulation(dist=dist)
+    ref = coupled_piston(**args).simulation(dist=serial())
     sim.run()
     ref.run()
     assert abs(sim.time - ref.time) < 1e-12 and sim.time > 0.099
+    if axis == "x":
+        assert dist.sum(sim.migrated) > 0
     assert_equals_one_rank(dist, sim, ref, ["x", "v", "rho", "sigma"])
