@@ -103,6 +103,10 @@ def _grid(t, dim):
     else:
         length = t.vector("length", dim, positive=True, scalar_ok=True)
         h = tuple(length[a] / cells[a] for a in range(dim))
+    if any(abs(h[a] - h[0]) > 1e-12 * h[0] for a in range(dim)):  # (physics/grid.py)
+        sizes = ", ".join(f"{v:.6g}" for v in h)
+        raise ConfigError(t.key("cells"), f"the cells are {sizes} wide along the axes: they "
+                          "must be square (one cell size), so length / cells must agree")
     periodic = _axes_list(t, "periodic", dim)
     for a in periodic:  # the folded ends must not overlap (`Grid.fold_periodic`)
         if cells[a] < 8:
