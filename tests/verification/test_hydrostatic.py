@@ -132,3 +132,40 @@ def test_mpm_hydrostatic_needs_an_mpm_fluid_and_gravity():
     with pytest.raises(ConfigError) as err:
         sc.case()
     assert err.value.key == "mpm.hydrostatic"
+
+
+def _pressure_noise(sim, spacing):
+    """std and mean of p / (rho0 g (H - y)) - 1 over the particles deeper than two spacings,
+    H the top row plus half a spacing (issue 18's tank metric, as for SPH)."""
+    p = sim.particles
+    y = p["x"][:, 1]
+    pressure = -np.trace(p["sigma"], axis1=1, axis2=2) / 3.0
+    top = y.max() + 0.5 * spacing
+    deep = y < top - 2.0 * spacing
+    r = pressure[deep] / (RHO0 * G * (top - y[deep])) - 1.0
+    return float(r.std()), float(r.mean())
+
+
+@pytest.mark.parametrize("shape", ["gimp", "linear"])
+def test_mpm_tank_pressure_noise_below_one_percent(shape):
+    """Issue 18's hydrostatic tank in MPM: started hydrostatic (`[mpm] hydrostatic`), no
+    damping, 1 s: the pressure noise (std of p / (rho0 g (h - y)) - 1 below the top two
+    rows) stays below 1 %. Started stress-free and settled by the grid damping (the case),
+    the same column ends at 3.9 % (GIMP) / 5.6 % (linear): the two particle rows of a cell
+    alternate. Measured: GIMP 0.25 % (mean +0.66 %), linear 0.20 % (+0.72 %); GIMP with
+    APIC 0.48 %. (Quadratic B-splines do not hold the column: module doc.)"""
+    spacing = 0.025  # 2 particles per 0.05 cell
+    sets = [("mpm.shape", shape), ("mpm.damping", 0.0), ("mpm.hydrostatic", True),
+            ("time.end", 1.0)]
+    sim = Simulation(load_case_file(CASE, overrides=sets))
+    X = by_gid(sim, "x").copy()
+    sim.run()
+    std, mean = _pressure_noise(sim, spacing)
+    print(f"{shape}: pressure noise {std:.4f}, mean {mean:+.4f}")
+    assert std < 0.01
+    assert abs(mean) < 0.01
+    assert np.abs(by_gid(sim, "x") - X).max() < 0.05 * spacing
+
+    settled = Simulation(load_case_file(CASE, overrides=[("mpm.shape", shape)]))
+    settled.run()
+    assert _pressure_noise(settled, spacing)[0] > 0.03
