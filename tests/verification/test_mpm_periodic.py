@@ -122,5 +122,6 @@ def test_bad_periodic_grids_and_lids_name_the_key():
                                        velocity=[1.0, 0.5])) == "boundaries[1].velocity"
     assert _bad(lambda sc: sc.boundary(face="y+", type="slip",
                                        velocity=[1.0, 0.0])) == "boundaries[1].velocity"
-    assert _bad(lambda sc: sc.data["grid"].update(cells=[6, 16])) == "grid.periodic"
+    assert _bad(lambda sc: sc.data["grid"].update(cells=[6, 16], length=[0.375, 1.0])) == \
+        "grid.periodic"
     # (SPH and coupled scenes with a periodic grid: tests/verification/test_coupled_periodic.py)
