@@ -1,5 +1,6 @@
 """`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--dim 3] [--no-peers]
-[--install-peers]`; `... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`.
+[--install-peers]`; `... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`,
+`... floats` (floats.py), `... coupled` (coupled_speed.py, under mpirun).
 
 Prints particle-steps per second for our solver and for the peers of ../shared/peers run in
 the same invocation (machines are shared and noisy: ratios taken together hold, absolute
@@ -66,6 +67,11 @@ def main(argv=None):
     fl.add_argument("--velocity-update", default="apic", choices=["apic", "pic", "flip"],
                     help="of the MPM bodies (pic: the FLIP blend at 0)")
     fl.add_argument("--out", default="bench_results")
+    cp = sub.add_parser("coupled", help="time per step of the coupled dam break on an "
+                        "obstacle on this job's ranks (coupled_speed.py)")
+    cp.add_argument("--spacing", type=float, default=0.004,
+                    help="of every body (0.004: 58,550 particles)")
+    cp.add_argument("--steps", type=int, default=40)
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "io-worker":
         from .io import worker
@@ -79,6 +85,11 @@ def main(argv=None):
     if args.command == "accuracy":
         from ..parallel.distributor import Distributor
         from .accuracy import run
+
+        return run(args, Distributor())
+    if args.command == "coupled":
+        from ..parallel.distributor import Distributor
+        from .coupled_speed import run
 
         return run(args, Distributor())
     if args.command == "floats":
