@@ -111,6 +111,7 @@ def archimedes_fraction(mass, width, height):
 
 
 def _block_state(sim, spacing, width, tank):
+    """(draft, the block's centre-of-mass vertical velocity) of the float (module doc)."""
     p = sim.particles
     n = p.n_owned
     x, body, v, m = p["x"][:n], p["body"][:n], p["v"][:n], p["mass"][:n]
@@ -118,44 +119,47 @@ def _block_state(sim, spacing, width, tank):
     yb = x[block, 1]
     bottom = float(yb[yb < yb.min() + 0.5 * spacing].mean()) - 0.5 * spacing
     xc = float(np.average(x[block, 0], weights=m[block]))
-    water = body == 0
-    far = water & (np.abs(x[:, 0] - xc) > width) & (x[:, 0] > 2 * spacing) & (
+    far = (body == 0) & (np.abs(x[:, 0] - xc) > width) & (x[:, 0] > 2 * spacing) & (
         x[:, 0] < tank - 2 * spacing)
-    # the far-field surface: the top particle of each column bin of two spacings
-    bins = np.floor(x[far, 0] / (2 * spacing)).astype(int)
-    tops = [x[far][bins == b, 1].max() for b in np.unique(bins)]
-    surface = float(np.mean(tops)) + 0.5 * spacing
-    vcom = float(np.average(v[block, 1], weights=m[block]))
-    return surface - bottom, vcom, float(m[block].sum())
+    # the far-field surface: the mean of the top particles of column bins two spacings wide
+    bins = np.floor(x[far, 0] / (2 * spacing)).astype(np.int64)
+    bins -= bins.min()
+    tops = np.full(bins.max() + 1, -np.inf)
+    np.maximum.at(tops, bins, x[far, 1])
+    surface = float(np.mean(tops[np.isfinite(tops)])) + 0.5 * spacing
+    return surface - bottom, float(np.average(v[block, 1], weights=m[block]))
 
 
 def float_run(combo, dist=None, **kw):
-    """Run one float (one rank); returns a dict: fraction (mean over the last fifth of the
-    run), reference, error (relative), settle (max |v_com| over the last tenth / impact
-    speed), steps, particles."""
+    """Run one float (one rank; `kw` as `float_scene`); returns a dict: fraction (mean over
+    the last fifth of the run), reference, error (relative), settle (max |v_com| over the
+    last tenth / impact speed), steps, particles."""
+    import inspect
+
     from mpi4py import MPI
 
     from ..parallel.distributor import Distributor
 
-    args = dict(width=0.1, height=0.06, drop=0.01, tank=0.5, spacing=0.005, end=3.0)
-    args.update(kw)
-    sc = float_scene(combo, **kw)
-    sim = sc.simulation(dist=dist or Distributor(MPI.COMM_SELF), write_output=False)
-    sp, width, height, end = args["spacing"], args["width"], args["height"], args["end"]
+    call = inspect.signature(float_scene).bind(combo, **kw)
+    call.apply_defaults()
+    a = call.arguments  # the scene's arguments, defaults included
+    sim = float_scene(**a).simulation(dist=dist or Distributor(MPI.COMM_SELF),
+                                      write_output=False)
+    block = sim.particles["body"] == 1
+    mass = float(sim.particles["mass"][block].sum())
     drafts, speeds = [], []
 
     def track(s):
-        if s.time >= 0.8 * end:
-            d, vc, _ = _block_state(s, sp, width, args["tank"])
-            drafts.append(d)
-        if s.time >= 0.9 * end:
-            speeds.append(abs(_block_state(s, sp, width, args["tank"])[1]))
+        if s.time >= 0.8 * a["end"]:
+            draft, vcom = _block_state(s, a["spacing"], a["width"], a["tank"])
+            drafts.append(draft)
+            if s.time >= 0.9 * a["end"]:
+                speeds.append(abs(vcom))
 
     sim.run(on_step=track)
-    _, _, mass = _block_state(sim, sp, width, args["tank"])
-    fraction = float(np.mean(drafts)) / height
-    reference = archimedes_fraction(mass, width, height)
-    impact = math.sqrt(2.0 * G * args["drop"])
+    fraction = float(np.mean(drafts)) / a["height"]
+    reference = archimedes_fraction(mass, a["width"], a["height"])
+    impact = math.sqrt(2.0 * G * a["drop"])
     return dict(combo=combo, fraction=fraction, reference=reference,
                 error=fraction / reference - 1.0, settle=max(speeds) / impact,
                 steps=sim.step_count, particles=sim.particles.n_owned)

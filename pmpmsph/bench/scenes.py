@@ -293,7 +293,8 @@ def coupled_piston(spacing=0.01, period=0.2, depth=0.2, thickness=0.1, kappa=2e4
     compressible column. Started in the hydrostatic state of an open column, it sinks and
     settles where the water's pressure under it carries its weight (`piston_equilibrium`).
     `velocity`: an initial velocity of water and layer, and the floor's (moving) one
-    (without gravity: a uniform translation through the period). Grid cells of two spacings, periodic along x."""
+    (without gravity: a uniform translation through the period). Grid cells of two
+    spacings, periodic along x; the slabs cut along `axis`."""
     sp = spacing
     cell = 2.0 * sp
     floor = 4 * sp

@@ -11,6 +11,7 @@ import tomllib
 
 from ..errors import ConfigError
 from ..materials import material_from_table
+from ..materials.codes import TAIT_FLUID
 from ..scene.geometry import Box, Disc, Polygon
 from ..scene.mesh import MeshGeometry, mesh_geometry
 from .case import (CONTACTS, METHODS, SHAPES, SPH_FORMULATIONS, SPH_INTEGRATORS, SPH_KERNELS,
@@ -253,7 +254,7 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     visc.finish()
     walls = t.string("walls", "no_slip", choices=("no_slip", "slip"))
     for i, b in enumerate(bodies):
-        if b.wall and materials[b.material].type_code != 5:
+        if b.wall and materials[b.material].type_code != TAIT_FLUID:
             raise ConfigError(f"bodies[{i}].material", "wall particles take a tait_fluid "
                               "material (their density follows the extrapolated pressure)")
     spec = SPHSpec(
@@ -296,7 +297,8 @@ def _check_mpm_hydrostatic(bodies, materials, gravity):
     if not any(gravity):
         raise ConfigError("mpm.hydrostatic", "a hydrostatic start needs gravity (the case "
                           "has none)")
-    if not any(b.method == "mpm" and not b.wall and materials[b.material].type_code == 5
+    if not any(b.method == "mpm" and not b.wall
+               and materials[b.material].type_code == TAIT_FLUID
                for b in bodies):
         raise ConfigError("mpm.hydrostatic", "no MPM body of a tait fluid to start "
                           "hydrostatic (it sets the MPM fluids' initial density and pressure)")

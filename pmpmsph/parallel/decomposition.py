@@ -17,6 +17,13 @@ from ..errors import ConfigError
 # cells) equals it: ghost layers must lie in the two neighbouring slabs only.
 
 
+def wrap_axis(x, axis, lo, length):
+    """Positions x (n, dim) back into [lo, lo + length) along `axis`, in place (a periodic
+    axis: the particles that crossed one end re-enter at the other)."""
+    xa = x[:, axis]
+    xa[:] = lo + np.mod(xa - lo, length)
+
+
 def default_axis(cells):
     """The longest axis (the first of equals), so slabs are as thick as possible."""
     return int(np.argmax(cells))
@@ -41,8 +48,7 @@ class Decomposition:
         #: wrap (`grid_neighbours`). Its slabs are two ghost widths thick at least, so that
         #: every shared node is shared by two ranks only, and no slab's ghosts meet
         #: themselves across the wrap.
-        self.wraps = (size > 1 and self.axis in tuple(getattr(grid_spec, "periodic", ()))
-                      and period is not None)
+        self.wraps = size > 1 and self.axis in grid_spec.periodic and period is not None
         self.min_slab = 2 * self.ghost if self.wraps else self.ghost
         m = self.min_slab
         if self.ncells < m:
@@ -97,8 +103,7 @@ class Decomposition:
 
     def wrap(self, x):
         """Positions x (n, dim) back into the period along the slab axis, in place."""
-        xa = x[:, self.axis]
-        xa[:] = self.origin + np.mod(xa - self.origin, self.period)
+        wrap_axis(x, self.axis, self.origin, self.period)
 
     def slab_distance(self, owner):
         """How many slabs away the ranks `owner` are (around the period when periodic)."""

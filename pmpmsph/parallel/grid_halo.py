@@ -37,11 +37,11 @@ class GridHalo:
         off = int(grid.offset[self.axis])
         self.bytes_sent = 0
         self._buffers = {}  # (route name, shapes) -> [(sendbuf, recvbuf)] per neighbour
-        # (neighbour, slice sent, slice received) of each exchange, in local node indices,
-        # made once: reduce sends the ghosts to their owner, broadcast the owned shared
-        # nodes back, sum sends and receives every node shared with the neighbour
-        # a route is (neighbour, slice out, slice in, side of our face): on two ranks with a
-        # periodic slab axis both faces lead to the other rank, told apart by the side
+        # (neighbour, slice sent, slice received, side of our face) of each exchange, in
+        # local node indices, made once: reduce sends the ghosts to their owner, broadcast
+        # the owned shared nodes back, sum sends and receives every node shared with the
+        # neighbour; on two ranks with a periodic slab axis both faces lead to the other
+        # rank, told apart by the side
         self.routes = {"reduce": [], "broadcast": [], "sum": []}
         for side, nb, shift in decomposition.grid_neighbours():
             (g_lo, g_hi), (s_lo, s_hi) = decomposition.overlap(nb, shift)
@@ -67,7 +67,7 @@ class GridHalo:
 
     def _exchange(self, arrays, name, tag, combine):
         """Send each neighbour the node slice `out` of every array and put what it sends into
-        the slice `in` (`self.routes[name]`: (neighbour, out, in) per neighbour), adding it
+        the slice `in` (`self.routes[name]`: (neighbour, out, in, side) per face), adding it
         with `combine`. Buffers are made once per (`name`, array shapes) and reused."""
         routes = self.routes[name]
         if not routes:

@@ -28,6 +28,7 @@ from ..particles import FieldSpec
 from .boundary import GridBoundaries
 from .grid import Grid
 from .scratch import rows_at_least
+from ..parallel.decomposition import wrap_axis
 from ..parallel.grid_halo import GridHalo
 from ..timing import Timers
 
@@ -360,11 +361,9 @@ class MPMStage:
         spec = self.case.grid
         if not self.grid.folded:
             return
-        n = self.n_g2p
-        x = self.p["x"]
+        x = self.p["x"][: self.n_g2p]
         for a in self.grid.folded:
-            lo, length = spec.origin[a], spec.cells[a] * spec.cell_size[a]
-            x[:n, a] = lo + np.mod(x[:n, a] - lo, length)
+            wrap_axis(x, a, spec.origin[a], spec.cells[a] * spec.cell_size[a])
 
     def _step(self, dt, time):
         self.signal = None

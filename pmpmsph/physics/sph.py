@@ -44,6 +44,7 @@ from ..kernels.sph_integrate import (
 )
 from ..kernels.sph_kernels import SUPPORT, kernel_w
 from ..kernels.sph_walls import wall_state
+from ..parallel.decomposition import wrap_axis
 from ..particles import FieldSpec
 from .hydrostatic import fluid_columns
 from .scratch import rows_at_least
@@ -541,9 +542,7 @@ class SPHStage:
             moving = np.isin(p["body"][:n], self.moving_walls)
             p["x"][:n][moving] += dt * p["v"][:n][moving]
         for axis in self.case.periodic:  # back into the period (images do the rest)
-            length = self.hi[axis] - self.lo[axis]
-            xa = p["x"][:n, axis]
-            xa[:] = self.lo[axis] + np.mod(xa - self.lo[axis], length)
+            wrap_axis(p["x"][:n], axis, self.lo[axis], self.hi[axis] - self.lo[axis])
         if bad < 0:
             bad = first_outside(self.dim, n, p["x"], self.lo, self.hi)
         return bad
