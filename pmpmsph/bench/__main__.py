@@ -1,6 +1,6 @@
 """`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--dim 3] [--no-peers]
 [--install-peers]`; `... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`,
-`... floats` (floats.py), `... coupled` (coupled_speed.py, under mpirun).
+`... floats` (floats.py).
 
 Prints particle-steps per second for our solver and for the peers of ../shared/peers run in
 the same invocation (machines are shared and noisy: ratios taken together hold, absolute
@@ -33,6 +33,11 @@ def main(argv=None):
     tp.add_argument("--out", default="bench_results")
     sc = sub.add_parser("scaling", help="strong scaling 1..N ranks, per-phase times")
     sc.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    sc.add_argument("--scene", default="column", choices=["column", "coupled_dam"],
+                    help="the MPM water column (--particles) or the coupled dam break on "
+                         "an obstacle (--spacing)")
+    sc.add_argument("--spacing", type=float, default=0.004,
+                    help="coupled_dam: of every body (0.004: 58,550 particles)")
     sc.add_argument("--particles", type=int, default=500_000)
     sc.add_argument("--steps", type=int, default=100)
     sc.add_argument("--repeat", type=int, default=3,
@@ -67,11 +72,6 @@ def main(argv=None):
     fl.add_argument("--velocity-update", default="apic", choices=["apic", "pic", "flip"],
                     help="of the MPM bodies (pic: the FLIP blend at 0)")
     fl.add_argument("--out", default="bench_results")
-    cp = sub.add_parser("coupled", help="time per step of the coupled dam break on an "
-                        "obstacle on this job's ranks (coupled_speed.py)")
-    cp.add_argument("--spacing", type=float, default=0.004,
-                    help="of every body (0.004: 58,550 particles)")
-    cp.add_argument("--steps", type=int, default=40)
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "io-worker":
         from .io import worker
@@ -87,11 +87,6 @@ def main(argv=None):
         from .accuracy import run
 
         return run(args, Distributor())
-    if args.command == "coupled":
-        from ..parallel.distributor import Distributor
-        from .coupled_speed import run
-
-        return run(args, Distributor())
     if args.command == "floats":
         from .floats import run
 
@@ -105,7 +100,7 @@ def main(argv=None):
         from .scaling import run
 
         run(args.ranks, args.particles, args.steps, args.out, args.output_every,
-            repeat=args.repeat)
+            repeat=args.repeat, scene=args.scene, spacing=args.spacing)
         if args.corun:
             from .scaling import corun
 

@@ -5,9 +5,12 @@
 step, particle-steps/s per rank, per-phase times (slowest rank), bytes sent per rank per step
 (ghost nodes and migration) and parallel efficiency E(N) = T(1) / (N T(N)).
 
-The scene: a 2D water column (Tait, c ~ 30 m/s) collapsing in a 2 x 1 box, quadratic
-B-splines, USL, CFL 0.5; particles flow across the slab faces, so migration and the load
-balancer take part.
+The scene (`--scene column`, the default): a 2D water column (Tait, c ~ 30 m/s) collapsing
+in a 2 x 1 box, quadratic B-splines, USL, CFL 0.5; particles flow across the slab faces, so
+migration and the load balancer take part. `--scene coupled_dam --spacing S`: the coupled
+dam break on an elastic obstacle (cases/coupled_dam_obstacle.toml: SPH water and walls, an
+MPM rubber obstacle) with every body seeded at spacing S (0.004: 58,550 particles); its
+table adds the SPH phases.
 
 `--corun` adds the co-run ceiling: one 1-rank run of half the particles alone, then two such
 runs at once (separate processes, no MPI between them). Their slowdown is what two ranks on
@@ -25,6 +28,14 @@ from ..scene_api import Scene
 
 PHASES = ("p2g", "grid", "g2p", "halo", "migration", "balance", "output")
 COMPUTE = ("p2g", "grid", "g2p")
+#: per scene: (the phases tabulated, those that are the particles' own work)
+SCENES = {"column": (PHASES, COMPUTE),
+          "coupled_dam": (("p2g", "grid", "g2p", "sph", "integrate", "coupling", "neighbours",
+                           "halo", "migration", "balance", "output"),
+                          ("p2g", "grid", "g2p", "sph", "integrate", "coupling",
+                           "neighbours"))}
+COUPLED_CASE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases",
+                            "coupled_dam_obstacle.toml")
 
 
 def scaling_scene(particles=500_000, balance_every=25):
@@ -48,13 +59,24 @@ def scaling_scene(particles=500_000, balance_every=25):
     return sc
 
 
+def coupled_dam_case(spacing):
+    """cases/coupled_dam_obstacle.toml with all five bodies seeded at `spacing`."""
+    from ..config.load import load_case_file
+
+    sets = [(f"bodies[{i}].spacing", spacing) for i in range(5)]
+    return load_case_file(os.path.normpath(COUPLED_CASE), overrides=sets)
+
+
 def worker(argv):
     import argparse
 
     from ..parallel.distributor import Distributor
     from ..parallel.migration import migrate
+    from ..simulation import Simulation
 
     ap = argparse.ArgumentParser()
+    ap.add_argument("--scene", default="column", choices=sorted(SCENES))
+    ap.add_argument("--spacing", type=float, default=0.004)
     ap.add_argument("--particles", type=int, default=500_000)
     ap.add_argument("--steps", type=int, default=100)
     ap.add_argument("--warmup", type=int, default=10)
@@ -63,22 +85,30 @@ def worker(argv):
     ap.add_argument("--json", required=True)
     a = ap.parse_args(argv)
     dist = Distributor()
-    scene = scaling_scene(a.particles)
-    if a.output_every:
-        scene.set("output.every_steps", a.output_every)
-    sim = scene.simulation(dist=dist, out_dir=a.out_dir, overwrite=True)
+    if a.scene == "column":
+        scene = scaling_scene(a.particles)
+        if a.output_every:
+            scene.set("output.every_steps", a.output_every)
+        sim = scene.simulation(dist=dist, out_dir=a.out_dir, overwrite=True)
+    else:
+        sim = Simulation(coupled_dam_case(a.spacing), dist=dist, write_output=False)
+    phases = SCENES[a.scene][0]
     n_global = dist.sum(sim.particles.n_owned)
     sim.run(max_steps=a.warmup)  # JIT compile / cache load, first balance
     sim.timers.total.clear()
-    halo0 = sim.mpm.halo.bytes_sent
+
+    def halo_bytes():  # ghost nodes, and the SPH particle halo of a coupled scene
+        return sim.mpm.halo.bytes_sent + (sim.sph.halo.bytes_sent if sim.sph else 0)
+
+    halo0 = halo_bytes()
     mig0 = migrate.bytes_sent
     dist.barrier()
     t0 = time.perf_counter()
     sim.run(max_steps=a.steps)
     dist.barrier()
     wall = time.perf_counter() - t0
-    mine = {"phases": {k: sim.timers.total.get(k, 0.0) for k in PHASES},
-            "halo_bytes": sim.mpm.halo.bytes_sent - halo0,
+    mine = {"phases": {k: sim.timers.total.get(k, 0.0) for k in phases},
+            "halo_bytes": halo_bytes() - halo0,
             "migration_bytes": migrate.bytes_sent - mig0,
             "particles": sim.particles.n_owned}
     everyone = dist.gather(mine)
@@ -132,7 +162,8 @@ def corun(particles, steps, out):
     return ceiling
 
 
-def run(ranks, particles, steps, out, output_every=0, repeat=3):
+def run(ranks, particles, steps, out, output_every=0, repeat=3, scene="column",
+        spacing=0.004):
     """`repeat` rounds, each running every rank count once in turn (so slow spells of a shared
     machine hit all counts alike); each count's fastest round is tabulated, as timeit does,
     and the efficiency of every round is printed beside it."""
@@ -142,7 +173,8 @@ def run(ranks, particles, steps, out, output_every=0, repeat=3):
         row = []
         for n in ranks:
             path = os.path.join(out, f"scaling_{n}_{k}.json")
-            cmd = _worker_cmd(n, particles, steps, path)
+            cmd = _worker_cmd(n, particles, steps, path) + ["--scene", scene,
+                                                            "--spacing", str(spacing)]
             if output_every:
                 cmd += ["--out-dir", os.path.join(out, f"scaling_run_{n}"), "--output-every",
                         str(output_every)]
@@ -155,30 +187,31 @@ def run(ranks, particles, steps, out, output_every=0, repeat=3):
         effs = [r[0]["wall"] * r[0]["ranks"] / (n * r[i]["wall"]) for r in rounds]
         print(f"efficiency on {n} ranks in each of {repeat} rounds: "
               + " ".join(f"{e:.2f}" for e in effs))
+    phases, compute = SCENES[scene]
     t1 = rows[0]["wall"] * rows[0]["ranks"]
     print(f"\nstrong scaling, {rows[0]['particles']} particles, {steps} steps "
           f"(slowest rank's phase times, seconds per step)")
     head = f"{'ranks':>5} {'s/step':>8} {'Mps/s/rank':>10} {'eff':>5} " + " ".join(
-        f"{p:>9}" for p in PHASES) + f" {'halo B/step':>11} {'migr B/step':>11}"
+        f"{p:>9}" for p in phases) + f" {'halo B/step':>11} {'migr B/step':>11}"
     print(head)
     for r in rows:
         n, steps_ = r["ranks"], r["steps"]
         per = r["per_rank"]
-        phase = {p: max(x["phases"][p] for x in per) / steps_ for p in PHASES}
+        phase = {p: max(x["phases"][p] for x in per) / steps_ for p in phases}
         eff = t1 / (n * r["wall"])
         rate = r["particles"] * steps_ / r["wall"] / n / 1e6
         halo_b = max(x["halo_bytes"] for x in per) / steps_
         mig_b = max(x["migration_bytes"] for x in per) / steps_
         r["efficiency"] = eff
         print(f"{n:>5} {r['wall'] / steps_:>8.4f} {rate:>10.2f} {eff:>5.2f} " + " ".join(
-            f"{phase[p]:>9.4f}" for p in PHASES) + f" {halo_b:>11.0f} {mig_b:>11.0f}")
+            f"{phase[p]:>9.4f}" for p in phases) + f" {halo_b:>11.0f} {mig_b:>11.0f}")
     # each rank's own speed: unequal figures mean unequal cores (or cores slowing each
     # other), which no decomposition can hide
     for r in rows:
-        speeds = [sum(x["phases"][p] for p in COMPUTE) / max(x["particles"], 1) / r["steps"]
+        speeds = [sum(x["phases"][p] for p in compute) / max(x["particles"], 1) / r["steps"]
                   * 1e9 for x in r["per_rank"]]
         r["compute_ns_per_particle_step"] = speeds
-        print(f"{r['ranks']:>5} ranks: P2G + grid + G2P per particle-step on each rank: "
+        print(f"{r['ranks']:>5} ranks: {' + '.join(compute)} per particle-step on each rank: "
               + ", ".join(f"{v:.1f}" for v in speeds) + " ns")
     with open(os.path.join(out, "scaling.json"), "w") as fh:
         json.dump(rows, fh, indent=1)
