@@ -13,7 +13,7 @@ import numpy as np
 
 from .build import build_particles, material_arrays, sph_stage_class
 from .errors import ConfigError, RunError
-from .io.diagnostics import DIAG_COLUMNS
+from .io.output import Output
 from .io.restart import Restart
 from .kernels.deformation import jacobian
 from .kernels.diagnostics import max_signal_speed, particle_sums
@@ -41,7 +41,7 @@ def _hms(seconds):
     return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
 
 
-class Simulation(Restart, Rebalancing):
+class Simulation(Output, Restart, Rebalancing):
     def __init__(self, case, dist=None, out_dir=None, overwrite=False, write_output=True,
                  out_key="--out", max_steps=None, check_steps=False):
         """`out_key` names the setting that chose `out_dir` in messages about it. With
@@ -220,60 +220,6 @@ class Simulation(Restart, Rebalancing):
                 raise RunError(self.step_count, -1, "no finite time step (NaN velocity/stress)")
             self.dt = self.case.time.cfl * limit
 
-    # -- output ------------------------------------------------------------------------------
-    def _open_output(self, overwrite):
-        from .io.diagnostics import DiagnosticsCSV
-        from .io.h5files import code_version
-        from .io.snapshots import SnapshotWriter
-
-        from .io.folders import check_output_folder, make_output_folder
-
-        def make():  # checked again: files may have appeared while the scene was built
-            check_output_folder(self.out_dir, overwrite, self.out_key)
-            make_output_folder(self.out_dir, self.out_key)
-
-        self.dist.agree("output files", make, root_only=True)
-        h5 = os.path.join(self.out_dir, "particles.h5")
-        csv = os.path.join(self.out_dir, "diagnostics.csv")
-        self.writer = SnapshotWriter(self.dist, h5, case_text=self.case.text,
-                                     attrs={"case_name": self.case.name, "dim": self.dim,
-                                            "code_version": code_version()},
-                                     overwrite=True, **self._snapshot_format())
-        self.diag = DiagnosticsCSV(self.dist, csv, DIAG_COLUMNS, overwrite=True)
-
-    def _snapshot_format(self):
-        """Stored float type of this run's snapshots (io/snapshots.py). sigma keeps its full
-        3x3 form (12 bytes more per particle in float32 than its 6 components): ParaView's
-        XDMF3 reader does not expand a Tensor6 and would label its 6 raw components in
-        VTK's order (xx, yy, zz, xy, yz, xz), not XDMF's (xx, xy, xz, yy, yz, zz)."""
-        return {"precision": self.case.output.precision}
-
-    def snapshot_fields(self):
-        """The case's output fields, plus gid and x if it leaves them out: a snapshot is
-        matched to another by gid (rows follow the ranks, io/xdmf.py) and drawn at x."""
-        p = self.particles
-        n = p.n_owned
-        out = {}
-        fields = self.case.output.fields
-        for name in fields + tuple(k for k in ("gid", "x") if k not in fields):
-            if name == "rho" and "rho" not in p:
-                out["rho"] = p["mass"][:n] / p["vol"][:n]
-            elif name in p:
-                arr = p[name][:n]
-                if name in ("x", "v") and self.dim < 3:  # XDMF geometry wants 3 components
-                    full = np.zeros((n, 3))
-                    full[:, : self.dim] = arr
-                    arr = full
-                out[name] = arr
-        return out
-
-    def write_snapshot(self):
-        if self.writer is None:
-            return
-        with self.timers.phase("output"):
-            self.writer.write(self.step_count, self.time, self.snapshot_fields())
-        self._last_snapshot_step = self.step_count
-
     def diagnostics(self):
         """Global sums as a dict (every rank gets the same numbers)."""
         p = self.particles
@@ -288,20 +234,6 @@ class Simulation(Restart, Rebalancing):
         return {"time": self.time, "step": self.step_count, "dt": self.dt, "kinetic": k,
                 "strain": u, "potential": pot, "total": k + u + pot, "px": s[3], "py": s[4],
                 "pz": s[5], "mass": s[6]}
-
-    def _scheduled_snapshot(self):
-        o = self.case.output
-        if o.every_steps is not None:
-            return self.step_count % o.every_steps == 0
-        if o.every is not None:
-            return self.time >= self._next_snapshot_time - 1e-12 * o.every
-        return False
-
-    def _after_snapshot(self):
-        o = self.case.output
-        if o.every is not None:
-            while self._next_snapshot_time <= self.time + 1e-12 * o.every:
-                self._next_snapshot_time += o.every
 
     # -- the step ----------------------------------------------------------------------------
     def step(self):
