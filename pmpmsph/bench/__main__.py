@@ -36,8 +36,8 @@ def main(argv=None):
     sc.add_argument("--scene", default="column", choices=["column", "coupled_dam"],
                     help="the MPM water column (--particles) or the coupled dam break on "
                          "an obstacle (--spacing)")
-    sc.add_argument("--spacing", type=float, default=0.004,
-                    help="coupled_dam: of every body (0.004: 58,550 particles)")
+    sc.add_argument("--spacing", type=float, default=0.0033,
+                    help="coupled_dam: of every body (0.0033: 55,231 particles, walls 4 layers)")
     sc.add_argument("--particles", type=int, default=500_000)
     sc.add_argument("--steps", type=int, default=100)
     sc.add_argument("--repeat", type=int, default=3,

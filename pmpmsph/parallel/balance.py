@@ -1,9 +1,14 @@
 """Load balancing: move slab faces by whole cells towards equal work (DESIGN.md §4).
 
-Work of a cell layer along the slab axis = its particles + NODE_COST x its grid nodes, where
-NODE_COST is the cost of a grid node relative to a particle step, measured with
-`python -m pmpmsph.bench` (grid solve + reset + halo per node against P2G + G2P per particle:
-about 0.05-0.1; 0.1 is used). Every `every` steps the global layer histogram is reduced; if
+Work of a cell layer along the slab axis = the sum of its particles' costs + NODE_COST x its
+grid nodes, in units of one MPM point's step (P2G + G2P). A particle's cost depends on its
+method (PARTICLE_COST): an SPH particle's pair loops cost 2.7 MPM points, a dummy wall
+particle's 1.4 (it takes part in the pair loops without rates of its own). Counting every
+particle alike put the free surface's SPH water on one rank and the floor's walls and the
+MPM obstacle on the other in `coupled_dam_obstacle`: 2.5 ms of the SPH stage's 19 ms per
+step apart. NODE_COST is the cost of a grid node, measured with `python -m pmpmsph.bench`
+(grid solve + reset + halo per node against P2G + G2P per particle: about 0.05-0.1; 0.1 is
+used). Every `every` steps the global layer histogram is reduced; if
 the most loaded rank exceeds the mean by more than `threshold`, new faces are placed at the
 quantiles of the cumulative work and kept only if they cut the imbalance at least in half
 (hysteresis: a balanced partition never flips back and forth). Deterministic: every rank
@@ -26,13 +31,20 @@ import numpy as np
 
 
 NODE_COST = 0.1
+#: a particle's step cost by method code (build.METHOD_CODES: mpm, sph, wall) in MPM points,
+#: measured on one rank of `bench scaling --scene coupled_dam --spacing 0.0033` (3,630 MPM
+#: points 0.26 us each, 45,753 SPH water 0.70 us, walls 0.36 us from 5,912 more of them)
+PARTICLE_COST = np.array([1.0, 2.7, 1.4])
 #: measured imbalances below this multiple of the threshold wait for a second check
 CONFIRM_BELOW = 3.0
 
 
-def layer_work(dec, x, nodes_per_layer):
-    """Global work of each cell layer along the slab axis (same array on every rank)."""
-    counts = np.bincount(dec.cell_of(x), minlength=dec.ncells).astype(np.float64)
+def layer_work(dec, x, nodes_per_layer, method=None):
+    """Global work of each cell layer along the slab axis (same array on every rank);
+    `method`: the particles' method codes (None: all MPM points)."""
+    weights = None if method is None else PARTICLE_COST[method]
+    counts = np.bincount(dec.cell_of(x), weights=weights,
+                         minlength=dec.ncells).astype(np.float64)
     counts = dec.dist.sum(counts)
     return counts + NODE_COST * nodes_per_layer
 
@@ -84,11 +96,12 @@ class LoadBalancer:
         self.history = []  # (step, imbalance before, imbalance after, faces)
         self._heaviest = None  # most loaded rank at the last measured check over threshold
 
-    def propose(self, dec, x, nodes_per_layer, busy=None):
+    def propose(self, dec, x, nodes_per_layer, busy=None, method=None):
         """New faces, or None to keep the present ones; collective (all ranks call it).
         `busy`: every rank's measured compute seconds since the last check (balance_by =
-        "time"), the same array on every rank; None balances the modelled work."""
-        work = layer_work(dec, x, nodes_per_layer)
+        "time"), the same array on every rank; None balances the modelled work. `method`: the
+        particles' method codes (their costs, PARTICLE_COST)."""
+        work = layer_work(dec, x, nodes_per_layer, method)
         if busy is not None:
             work = calibrated_work(dec.faces, work, busy)
         before = imbalance(dec.faces, work)

@@ -28,8 +28,9 @@ class Rebalancing:
         if force_faces is not None:
             faces, before, after = np.asarray(force_faces), None, None
         else:
-            faces, before, after = self.balancer.propose(dec, self.particles["x"],
-                                                         nodes_per_layer, self._busy())
+            p = self.particles
+            faces, before, after = self.balancer.propose(dec, p["x"], nodes_per_layer,
+                                                         self._busy(), p["method"])
         if faces is None:
             return False
         self._apply_faces(faces)

@@ -66,3 +66,22 @@ def test_a_large_measured_imbalance_moves_faces_at_once():
     faces, before, after = LoadBalancer(every=25, threshold=0.05).propose(dec, x, 0.0,
                                                                           [2.0, 1.0])
     assert before > 0.15 and faces is not None and faces[1] < 5
+
+
+def test_particles_weigh_by_their_method():
+    """The modelled work counts an SPH particle as PARTICLE_COST[1] MPM points and a wall
+    particle as PARTICLE_COST[2]: 5 layers of SPH water against 5 of MPM points and walls
+    (the same number of particles) are not balanced, and the face moves into the water."""
+    from pmpmsph.parallel.balance import PARTICLE_COST, LoadBalancer, layer_work
+
+    dec = _Slabs([0, 5, 10])
+    x = np.repeat(np.arange(10) + 0.5, 100)[:, None]
+    method = np.repeat([1] * 5 + [0, 2] * 2 + [0], 100).astype(np.int8)
+    work = layer_work(dec, x, 0.0, method)
+    np.testing.assert_allclose(work[:5], 100 * PARTICLE_COST[1])
+    np.testing.assert_allclose(work[5:], 100 * PARTICLE_COST[[0, 2, 0, 2, 0]])
+    np.testing.assert_array_equal(layer_work(dec, x, 0.0), np.full(10, 100.0))
+    faces, before, after = LoadBalancer(every=25, threshold=0.05).propose(
+        dec, x, 0.0, None, method)
+    assert before > 0.2 and faces is not None and faces[1] == 4
+    assert after < 0.5 * before
