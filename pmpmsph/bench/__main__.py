@@ -1,6 +1,6 @@
 """`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--dim 3] [--no-peers]
 [--install-peers]`; `... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`,
-`... floats` (floats.py).
+`... floats` (floats.py), `... plate` (plate_fsi.py).
 
 Prints particle-steps per second for our solver and for the peers of ../shared/peers run in
 the same invocation (machines are shared and noisy: ratios taken together hold, absolute
@@ -72,6 +72,13 @@ def main(argv=None):
     fl.add_argument("--velocity-update", default="apic", choices=["apic", "pic", "flip"],
                     help="of the MPM bodies (pic: the FLIP blend at 0)")
     fl.add_argument("--out", default="bench_results")
+    pl = sub.add_parser("plate", help="water on an elastic clamped plate, mid-span deflection "
+                        "against the clamped beam (plate_fsi.py)")
+    pl.add_argument("--combos", nargs="+", default=["mpm_plate", "sph_plate"],
+                    choices=["mpm_plate", "sph_plate"])
+    pl.add_argument("--spacing", type=float, nargs="+", default=[0.01, 0.005, 0.0025])
+    pl.add_argument("--end", type=float, default=0.5)
+    pl.add_argument("--out", default="bench_results")
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "io-worker":
         from .io import worker
@@ -89,6 +96,10 @@ def main(argv=None):
         return run(args, Distributor())
     if args.command == "floats":
         from .floats import run
+
+        return run(args)
+    if args.command == "plate":
+        from .plate_fsi import run
 
         return run(args)
     if args.command == "io":

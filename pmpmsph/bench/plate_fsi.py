@@ -1,0 +1,194 @@
+"""Water on an elastic plate (BENCHMARKS.md scene 20; the static test of Fourey et al. 2017):
+a water column of depth H rests on a plate of span L and thickness t clamped at both ends;
+its mid-span deflection settles at the clamped beam's
+
+    w = q L^4 / (384 D),  D = E t^3 / (12 (1 - nu^2)),  q = rho_f g H + rho_s g t
+
+(Euler-Bernoulli; plane strain, so D carries 1 - nu^2), plus the shear deflection of a
+Timoshenko beam, q L^2 / (8 kappa G t) with kappa = 5/6, which a continuum plate has too:
+8 t^2 / ((1 - nu) kappa L^2) of the bending part, 2.2 % at t / L = 1/25 and nu = 0.3.
+
+`water_on_plate(combo)` builds the scene: "mpm_plate" (an MPM plate under SPH water, the
+plate held by fixed grid nodes beyond the span) or "sph_plate" (an SPH plate, held by a
+prescribed zero velocity beyond the span, under MPM water). The side walls stand on the
+clamps. E is chosen so that w / L = 1 % (`plate_modulus`). Both bodies are damped
+(a -= alpha v, which leaves the static state alone) so that the plate settles within a few
+of its periods, 2 pi sqrt(w / g) = 0.13 s. `python -m pmpmsph.bench plate` runs it.
+"""
+import math
+
+import numpy as np
+
+from ..scene_api import Scene
+
+RHO_WATER = 1000.0
+G = 9.81
+
+
+def load_per_length(depth, thickness, rho_plate, rho_water=RHO_WATER, g=G):
+    """q = rho_f g H + rho_s g t."""
+    return rho_water * g * depth + rho_plate * g * thickness
+
+
+def bending_deflection(q, span, thickness, E, nu):
+    """Euler-Bernoulli mid-span deflection of a clamped-clamped beam, q L^4 / (384 D)."""
+    D = E * thickness**3 / (12.0 * (1.0 - nu**2))
+    return q * span**4 / (384.0 * D)
+
+
+def shear_deflection(q, span, thickness, E, nu, kappa=5.0 / 6.0):
+    """Timoshenko's added mid-span deflection of the clamped beam, q L^2 / (8 kappa G t)."""
+    return q * span**2 / (8.0 * kappa * E / (2.0 * (1.0 + nu)) * thickness)
+
+
+def plate_modulus(span, thickness, q, nu, ratio=0.01):
+    """E giving a bending deflection of `ratio` x span under q."""
+    return q * span**4 * 12.0 * (1.0 - nu**2) / (384.0 * ratio * span * thickness**3)
+
+
+def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, depth=0.1,
+                   rho_plate=7800.0, nu=0.3, damping=40.0, end=0.6, clamp_cells=2):
+    """The scene, and the reference dict (q, E, w_bending, w_shear)."""
+    sp = spacing
+    cell = 2.0 * sp
+    wall = 3 * sp
+    clamp = clamp_cells * cell
+    q = load_per_length(depth, thickness, rho_plate)
+    E = plate_modulus(span, thickness, q, nu)
+    c0 = 10.0 * math.sqrt(2.0 * G * depth)
+    kappa = c0**2 * RHO_WATER / 7.0
+    below = 3 * cell                        # room for the plate to bend into
+    x0 = -clamp - 2 * cell
+    nx = int(round((span + 2 * clamp + 4 * cell) / cell))
+    ny = int(round((below + thickness + depth + 4 * cell) / cell))
+    top = thickness + depth + 2 * cell
+    fluid_method, plate_method = ("sph", "mpm") if combo == "mpm_plate" else ("mpm", "sph")
+    mpm = dict(shape="gimp", transfer="musl", damping=damping)
+    if fluid_method == "sph":
+        sph = dict(h_factor=1.3, integrator="predictor_corrector", walls="slip",
+                   damping=damping, hydrostatic=True, viscosity=dict(alpha=0.1, beta=0.0))
+    else:  # a total-Lagrangian SPH plate (the formulation that bends well, BENCHMARKS 12)
+        sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping)
+        mpm.update(hydrostatic=True, velocity_update="apic")
+    sc = Scene(2, grid=dict(origin=[x0, -below], cell_size=cell, cells=[nx, ny]),
+               time=dict(end=end, cfl=0.2), gravity=[0.0, -G], mpm=mpm, sph=sph,
+               parallel=dict(balance_every=0))
+    sc.material("plate", model="neo_hookean", E=E, nu=nu, rho=rho_plate)
+    sc.material("water", model="tait", rho=RHO_WATER, kappa=kappa, gamma=7.0, mu=0.0)
+    sc.body(name="water", method=fluid_method, material="water", shape="box",
+            min=[0.0, thickness], max=[span, thickness + depth], spacing=sp)
+    sc.body(name="plate", method=plate_method, material="plate", shape="box",
+            min=[-clamp, 0.0], max=[span + clamp, thickness], spacing=sp)
+    if fluid_method == "sph":
+        for name, lo, hi in (("left", -wall, 0.0), ("right", span, span + wall)):
+            sc.body(name=name, method="sph", wall=True, material="water", shape="box",
+                    min=[lo, thickness], max=[hi, top], spacing=sp)
+        eps = 1e-3 * cell
+        for lo, hi in ((x0 - cell, eps), (span - eps, x0 + (nx + 1) * cell)):
+            sc.data.setdefault("boundaries", []).append(
+                dict(box=dict(min=[lo, -below - cell], max=[hi, top + cell]), type="fixed"))
+    else:
+        for lo, hi in ((-clamp - sp, 0.0), (span, span + clamp + sp)):
+            sc.data.setdefault("prescribed", []).append(
+                dict(body="plate", box=dict(min=[lo, -sp], max=[hi, thickness + sp]),
+                     velocity=[0.0, 0.0]))
+        eps = 1e-3 * cell
+        for lo, hi, nx_ in ((x0 - cell, eps, -1.0), (span - eps, x0 + (nx + 1) * cell, 1.0)):
+            sc.data.setdefault("boundaries", []).append(
+                dict(box=dict(min=[lo, thickness - eps], max=[hi, top + cell]), type="slip",
+                     normal=[nx_, 0.0]))
+    ref = dict(q=q, E=E, w_bending=bending_deflection(q, span, thickness, E, nu),
+               w_shear=shear_deflection(q, span, thickness, E, nu), span=span)
+    return sc, ref
+
+
+def midspan_deflection(sim, plate_body, span, y0):
+    """Mean vertical displacement of the plate's particles in the two columns either side
+    of mid-span (the whole thickness: its centre line), from their start heights `y0`
+    (by gid)."""
+    p = sim.particles
+    n = p.n_owned
+    mine = (p["body"][:n] == plate_body)
+    x = p["x"][:n]
+    near = mine & (np.abs(x[:, 0] - 0.5 * span) < 0.75 * sim_spacing(sim, plate_body))
+    gid = p["gid"][:n][near]
+    s = sim.dist.sum(np.array([np.sum(x[near, 1] - y0[gid]), float(near.sum())]))
+    return s[0] / max(s[1], 1.0)
+
+
+def sim_spacing(sim, body):
+    spacing = sim.case.bodies[body].spacing
+    return float(np.min(spacing))
+
+
+def plate_run(combo="mpm_plate", on_sample=None, sample_every=0.01, dist=None, **kw):
+    """Run the scene; returns (times, mid-span deflections, reference dict)."""
+    sc, ref = water_on_plate(combo, **kw)
+    sim = sc.simulation(dist=dist) if dist is not None else sc.simulation()
+    names = [b.name for b in sim.case.bodies]
+    body = names.index("plate")
+    p = sim.particles
+    gid = p["gid"][:p.n_owned]
+    y0 = np.full(int(sim.dist.max(int(gid.max()) if len(gid) else 0)) + 1, -np.inf)
+    y0[gid] = p["x"][:p.n_owned, 1]
+    y0 = sim.dist.max_array(y0)  # every particle's start height on every rank
+    times, w = [], []
+    next_t = [0.0]
+
+    def sample(s):
+        if s.time + 1e-12 >= next_t[0]:
+            times.append(s.time)
+            w.append(midspan_deflection(s, body, ref["span"], y0))
+            next_t[0] += sample_every
+            if on_sample is not None:
+                on_sample(times[-1], w[-1])
+
+    sim.run(on_step=sample)
+    sim.close()
+    return np.array(times), np.array(w), ref
+
+
+def settled(times, w, window=0.1):
+    """(mean, spread) of the mid-span deflection over the last `window` seconds; the spread
+    is (max - min) / |mean|."""
+    last = w[times >= times[-1] - window - 1e-12]
+    mean = float(np.mean(last))
+    return mean, float((last.max() - last.min()) / abs(mean))
+
+
+def run(args):
+    """`python -m pmpmsph.bench plate`: each spacing of each combination; a table and
+    `<out>/plate.csv`."""
+    import csv
+    import os
+    import time
+
+    rows = []
+    print(f"{'combination':<12}{'spacing':>9}{'w (mm)':>9}{'EB (mm)':>9}{'error':>9}"
+          f"{'Timosh.':>9}{'error':>9}{'spread':>8}{'wall s':>8}")
+    for combo in args.combos:
+        for sp in args.spacing:
+            t0 = time.perf_counter()
+            try:
+                t, w, ref = plate_run(combo, spacing=sp, end=args.end)
+                mean, spread = settled(t, w)
+                failure = ""
+            except Exception as exc:  # a failed run is a row of the table, not the end
+                ref = water_on_plate(combo, spacing=sp)[1]
+                mean, spread, failure = float("nan"), float("nan"), str(exc)
+            wb, ws = ref["w_bending"], ref["w_shear"]
+            r = dict(combo=combo, spacing=sp, w=-mean, w_bending=wb, w_timoshenko=wb + ws,
+                     error=-mean / wb - 1.0, error_timoshenko=-mean / (wb + ws) - 1.0,
+                     spread=spread, wall=time.perf_counter() - t0, failure=failure)
+            rows.append(r)
+            print(f"{combo:<12}{sp:>9g}{1e3 * r['w']:>9.4f}{1e3 * wb:>9.4f}{r['error']:>+9.2%}"
+                  f"{1e3 * (wb + ws):>9.4f}{r['error_timoshenko']:>+9.2%}{spread:>8.3f}"
+                  f"{r['wall']:>8.1f} {failure}", flush=True)
+    os.makedirs(args.out, exist_ok=True)
+    path = os.path.join(args.out, "plate.csv")
+    with open(path, "w", newline="") as fh:
+        out = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        out.writeheader()
+        out.writerows(rows)
+    print(f"written {path}")
+    return 0
