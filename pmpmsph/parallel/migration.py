@@ -5,6 +5,8 @@ row per particle and sent to the neighbour that owns them; only the two neighbou
 contacted. A particle that would have to cross a whole slab in one step is an error (dt or
 the slab is wrong), decided collectively so no rank waits forever.
 """
+import math
+
 import numpy as np
 
 from ..errors import RunError
@@ -14,30 +16,39 @@ TAG_COUNT = 21
 TAG_DATA = 22
 
 
+def _row_bytes(arr):
+    """Bytes of one particle's row of a field array."""
+    return math.prod(arr.shape[1:]) * arr.itemsize
+
+
 def _pack(particles, names, idx):
-    cols = []
-    for name in names:
-        arr = particles[name][idx]
-        width = int(np.prod(arr.shape[1:], dtype=np.int64))
-        cols.append(np.ascontiguousarray(arr).reshape(len(idx), width).view(np.uint8))
-    if not cols:
-        return np.zeros((len(idx), 0), np.uint8)
-    return np.ascontiguousarray(np.concatenate(cols, axis=1))
+    """The rows `idx` of fields `names`, side by side in one (len(idx), bytes) array."""
+    arrays = [particles[name] for name in names]
+    out = np.empty((len(idx), sum(_row_bytes(a) for a in arrays)), np.uint8)
+    pos = 0
+    for arr in arrays:
+        width = _row_bytes(arr)
+        if len(idx):
+            out[:, pos:pos + width] = arr[idx].reshape(len(idx), -1).view(np.uint8)
+        pos += width
+    return out
 
 
-def _unpack(particles, names, rows):
-    out = {}
+def _columns(particles, names, rows):
+    """(name, the field's values in `rows` as a (n, ...) view-or-copy) of a packed array."""
     pos = 0
     n = rows.shape[0]
     for name in names:
         spec = particles.specs[name]
         shape = particles._shape(spec, n)
-        itemsize = np.dtype(spec.dtype).itemsize
-        width = int(np.prod(shape[1:], dtype=np.int64)) * itemsize
+        width = math.prod(shape[1:]) * np.dtype(spec.dtype).itemsize
         chunk = np.ascontiguousarray(rows[:, pos:pos + width])
-        out[name] = chunk.view(spec.dtype).reshape(shape)
+        yield name, chunk.view(spec.dtype).reshape(shape)
         pos += width
-    return out
+
+
+def _unpack(particles, names, rows):
+    return dict(_columns(particles, names, rows))
 
 
 def migrate(decomposition, particles, step=0, hop=False):

@@ -8,11 +8,13 @@ particle of the neighbour within `width` of the face can interact with our parti
 import numpy as np
 
 from ..errors import ConfigError
-from .migration import _pack, _unpack
+from .migration import _columns, _pack, _row_bytes, _unpack
 
 TAG_HALO_COUNT = 31
 TAG_HALO_DATA = 32
 TAG_HALO_REFRESH = 33
+#: halo fields fixed for the particle's life (identity, method, material, mass)
+CONSTANT_FIELDS = frozenset(("gid", "method", "body", "mat", "mass"))
 
 
 class ParticleHalo:
@@ -46,6 +48,9 @@ class ParticleHalo:
             # a halo must come from the two neighbours only
             raise ValueError(f"halo width {self.width:g} exceeds the thinnest slab {thinnest:g}")
         self.names = particles.fields(halo=True)
+        # what a particle never changes while it stays in one exchange's plan: a refresh of
+        # "everything" (`refresh(halo.mutable)`) leaves these out
+        self.mutable = tuple(n for n in self.names if n not in CONSTANT_FIELDS)
         self.bytes_sent = 0
         self._plan = None  # (send lists, [(neighbour, first halo row, count)]) of the last exchange
 
@@ -155,8 +160,7 @@ class ParticleHalo:
             if rows.size:
                 reqs.append(comm.Isend(rows, dest=nb, tag=TAG_HALO_REFRESH + 100 * side))
                 self.bytes_sent += rows.nbytes
-        width = sum(int(np.prod(p.arrays[nm].shape[1:], dtype=np.int64))
-                    * p.arrays[nm].itemsize for nm in names)
+        width = sum(_row_bytes(p.arrays[nm]) for nm in names)
         for (side, nb, shift), first, count in recv_rows:
             buf = np.empty((count, width), np.uint8)
             bufs.append((first, shift, buf))
@@ -165,7 +169,7 @@ class ParticleHalo:
         MPI.Request.Waitall(reqs)
         for first, shift, buf in bufs:
             if buf.shape[0]:
-                for name, arr in _unpack(p, names, buf).items():
+                for name, arr in _columns(p, names, buf):
                     p.arrays[name][first:first + buf.shape[0]] = arr
                     if name == "x" and shift != 0.0:
                         p.arrays[name][first:first + buf.shape[0], self.dec.axis] += shift

@@ -343,7 +343,7 @@ class SPHStage:
             p.n_total = self.n_total_build
             if self.halo_enabled:
                 with t.phase("halo"):
-                    self.halo.refresh(self.halo.names)
+                    self.halo.refresh(self.halo.mutable)
 
     def evaluate(self):
         """Rates (acc, drho, L) of owned SPH particles at the current state."""
