@@ -74,8 +74,9 @@ def main(argv=None):
     fl.add_argument("--out", default="bench_results")
     pl = sub.add_parser("plate", help="water on an elastic clamped plate, mid-span deflection "
                         "against the clamped beam (plate_fsi.py)")
-    pl.add_argument("--combos", nargs="+", default=["mpm_plate", "sph_plate"],
-                    choices=["mpm_plate", "sph_plate"])
+    pl.add_argument("--combos", nargs="+", default=["mpm_plate", "mpm_mpm", "sph_plate"],
+                    choices=["mpm_plate", "mpm_mpm", "sph_plate"],
+                    help="plate / water: MPM / SPH, MPM / MPM, SPH / MPM")
     pl.add_argument("--spacing", type=float, nargs="+", default=[0.01, 0.005, 0.0025])
     pl.add_argument("--end", type=float, default=0.5)
     pl.add_argument("--out", default="bench_results")

@@ -9,8 +9,9 @@ Timoshenko beam, q L^2 / (8 kappa G t) with kappa = 5/6, which a continuum plate
 8 t^2 / ((1 - nu) kappa L^2) of the bending part, 2.2 % at t / L = 1/25 and nu = 0.3.
 
 `water_on_plate(combo)` builds the scene: "mpm_plate" (an MPM plate under SPH water, the
-plate held by fixed grid nodes beyond the span) or "sph_plate" (an SPH plate, held by a
-prescribed zero velocity beyond the span, under MPM water). The side walls stand on the
+plate held by fixed grid nodes beyond the span), "mpm_mpm" (the MPM plate under MPM water,
+each body in its own velocity field, frictionless contact) or "sph_plate" (a total-Lagrangian
+SPH plate, held by a prescribed zero velocity beyond the span, under MPM water). The side walls stand on the
 clamps. E is chosen so that w / L = 1 % (`plate_modulus`). Both bodies are damped
 (a -= alpha v, which leaves the static state alone) so that the plate settles within a few
 of its periods, 2 pi sqrt(w / g) = 0.13 s. `python -m pmpmsph.bench plate` runs it.
@@ -62,37 +63,48 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
     nx = int(round((span + 2 * clamp + 4 * cell) / cell))
     ny = int(round((below + thickness + depth + 4 * cell) / cell))
     top = thickness + depth + 2 * cell
-    fluid_method, plate_method = ("sph", "mpm") if combo == "mpm_plate" else ("mpm", "sph")
+    fluid_method, plate_method = {"mpm_plate": ("sph", "mpm"), "sph_plate": ("mpm", "sph"),
+                                  "mpm_mpm": ("mpm", "mpm")}[combo]
     mpm = dict(shape="gimp", transfer="musl", damping=damping)
     if fluid_method == "sph":
         sph = dict(h_factor=1.3, integrator="predictor_corrector", walls="slip",
                    damping=damping, hydrostatic=True, viscosity=dict(alpha=0.1, beta=0.0))
     else:  # a total-Lagrangian SPH plate (the formulation that bends well, BENCHMARKS 12)
         sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping)
-        mpm.update(hydrostatic=True, velocity_update="apic")
+        # water and plate each in their own velocity field, in frictionless contact (an
+        # SPH solid takes part in P2G as a body of its own: physics/sph_solid.py)
+        mpm.update(hydrostatic=True, velocity_update="apic", contact="multi", contact_gap=1.5)
+        if plate_method == "mpm":
+            sph = None
     sc = Scene(2, grid=dict(origin=[x0, -below], cell_size=cell, cells=[nx, ny]),
-               time=dict(end=end, cfl=0.2), gravity=[0.0, -G], mpm=mpm, sph=sph,
-               parallel=dict(balance_every=0))
+               time=dict(end=end, cfl=0.2), gravity=[0.0, -G], mpm=mpm,
+               parallel=dict(balance_every=0), **({"sph": sph} if sph else {}))
     sc.material("plate", model="neo_hookean", E=E, nu=nu, rho=rho_plate)
     sc.material("water", model="tait", rho=RHO_WATER, kappa=kappa, gamma=7.0, mu=0.0)
     sc.body(name="water", method=fluid_method, material="water", shape="box",
             min=[0.0, thickness], max=[span, thickness + depth], spacing=sp)
     sc.body(name="plate", method=plate_method, material="plate", shape="box",
             min=[-clamp, 0.0], max=[span + clamp, thickness], spacing=sp)
+    eps = 1e-3 * cell
     if fluid_method == "sph":
         for name, lo, hi in (("left", -wall, 0.0), ("right", span, span + wall)):
             sc.body(name=name, method="sph", wall=True, material="water", shape="box",
                     min=[lo, thickness], max=[hi, top], spacing=sp)
-        eps = 1e-3 * cell
         for lo, hi in ((x0 - cell, eps), (span - eps, x0 + (nx + 1) * cell)):
             sc.data.setdefault("boundaries", []).append(
                 dict(box=dict(min=[lo, -below - cell], max=[hi, top + cell]), type="fixed"))
+    elif plate_method == "mpm":  # clamps up to the plate's top, slip walls above
+        for lo, hi, nx_ in ((x0 - cell, eps, -1.0), (span - eps, x0 + (nx + 1) * cell, 1.0)):
+            sc.data.setdefault("boundaries", []).extend([
+                dict(box=dict(min=[lo, -below - cell], max=[hi, thickness + eps]),
+                     type="fixed"),
+                dict(box=dict(min=[lo, thickness + eps], max=[hi, top + cell]), type="slip",
+                     normal=[nx_, 0.0])])
     else:
         for lo, hi in ((-clamp - sp, 0.0), (span, span + clamp + sp)):
             sc.data.setdefault("prescribed", []).append(
                 dict(body="plate", box=dict(min=[lo, -sp], max=[hi, thickness + sp]),
                      velocity=[0.0, 0.0]))
-        eps = 1e-3 * cell
         for lo, hi, nx_ in ((x0 - cell, eps, -1.0), (span - eps, x0 + (nx + 1) * cell, 1.0)):
             sc.data.setdefault("boundaries", []).append(
                 dict(box=dict(min=[lo, thickness - eps], max=[hi, top + cell]), type="slip",
