@@ -30,8 +30,9 @@ def studies():
     from .accuracy_1d import BAR, REVERSAL, SPRING, STRESS
     from .accuracy_2d import DAM, DISKS, PLATE
     from .accuracy_fluids import CAVITY, COUETTE
+    from .accuracy_fsi import PLATE_FSI
 
-    return [SPRING, DISKS, REVERSAL, STRESS, PLATE, BAR, DAM, CAVITY, COUETTE]
+    return [SPRING, DISKS, REVERSAL, STRESS, PLATE, BAR, DAM, CAVITY, COUETTE, PLATE_FSI]
 
 
 def run_point(dist, study, method, level, quick):
@@ -63,7 +64,8 @@ def chosen_methods(study, quick):
 def sweep(dist, study, quick, log):
     rows = []
     for method in chosen_methods(study, quick):
-        for level in study["levels"]["quick" if quick else "full"]:
+        levels = method.get("levels", study["levels"])  # a method may stop sooner
+        for level in levels["quick" if quick else "full"]:
             t0 = time.perf_counter()
             row = run_point(dist, study, method, level, quick)
             rows.append(row)

@@ -187,9 +187,9 @@ def coupling_verdict(studies, all_rows):
         return []
     if wins:
         return [f"Coupling is the cheapest way to: {', '.join(wins)}."]
-    return [f"Coupling pays off in none of the scenes it applies to ({', '.join(tried)}): on "
-            "these 1D bars a pure method reaches each error sooner or the coupled run does "
-            "not reach it; what it buys is SPH where SPH alone cannot be loaded (scene 9)."]
+    return [f"Coupling pays off in none of the scenes it applies to ({', '.join(tried)}): "
+            "in each a pure method reaches each error sooner or the coupled run does not "
+            "reach it; what it buys is SPH where SPH alone cannot be loaded (scene 9)."]
 
 
 def coupling_lines(rows):

@@ -64,11 +64,14 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
     ny = int(round((below + thickness + depth + 4 * cell) / cell))
     top = thickness + depth + 2 * cell
     fluid_method, plate_method = {"mpm_plate": ("sph", "mpm"), "sph_plate": ("mpm", "sph"),
-                                  "mpm_mpm": ("mpm", "mpm")}[combo]
+                                  "mpm_mpm": ("mpm", "mpm"), "sph_sph": ("sph", "sph")}[combo]
     mpm = dict(shape="gimp", transfer="musl", damping=damping)
     if fluid_method == "sph":
         sph = dict(h_factor=1.3, integrator="predictor_corrector", walls="slip",
                    damping=damping, hydrostatic=True, viscosity=dict(alpha=0.1, beta=0.0))
+        if plate_method == "sph":  # an updated-Lagrangian plate beside the water: the
+            # corrected kernel and the hourglass control of the plate with a hole (scene 11)
+            sph.update(correction=True, hourglass=2.0, integrator="verlet")
     else:  # a total-Lagrangian SPH plate (the formulation that bends well, BENCHMARKS 12)
         sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping)
         # water and plate each in their own velocity field, in frictionless contact (an
@@ -76,9 +79,11 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
         mpm.update(hydrostatic=True, velocity_update="apic", contact="multi", contact_gap=1.5)
         if plate_method == "mpm":
             sph = None
-    sc = Scene(2, grid=dict(origin=[x0, -below], cell_size=cell, cells=[nx, ny]),
-               time=dict(end=end, cfl=0.2), gravity=[0.0, -G], mpm=mpm,
-               parallel=dict(balance_every=0), **({"sph": sph} if sph else {}))
+    space = (dict(grid=dict(origin=[x0, -below], cell_size=cell, cells=[nx, ny]), mpm=mpm)
+             if "mpm" in (fluid_method, plate_method) else
+             dict(domain=dict(min=[x0, -below], max=[x0 + nx * cell, -below + ny * cell])))
+    sc = Scene(2, time=dict(end=end, cfl=0.2), gravity=[0.0, -G],
+               parallel=dict(balance_every=0), **space, **({"sph": sph} if sph else {}))
     sc.material("plate", model="neo_hookean", E=E, nu=nu, rho=rho_plate)
     sc.material("water", model="tait", rho=RHO_WATER, kappa=kappa, gamma=7.0, mu=0.0)
     sc.body(name="water", method=fluid_method, material="water", shape="box",
@@ -90,6 +95,7 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
         for name, lo, hi in (("left", -wall, 0.0), ("right", span, span + wall)):
             sc.body(name=name, method="sph", wall=True, material="water", shape="box",
                     min=[lo, thickness], max=[hi, top], spacing=sp)
+    if fluid_method == "sph" and plate_method == "mpm":
         for lo, hi in ((x0 - cell, eps), (span - eps, x0 + (nx + 1) * cell)):
             sc.data.setdefault("boundaries", []).append(
                 dict(box=dict(min=[lo, -below - cell], max=[hi, top + cell]), type="fixed"))
@@ -100,11 +106,12 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
                      type="fixed"),
                 dict(box=dict(min=[lo, thickness + eps], max=[hi, top + cell]), type="slip",
                      normal=[nx_, 0.0])])
-    else:
+    if plate_method == "sph":
         for lo, hi in ((-clamp - sp, 0.0), (span, span + clamp + sp)):
             sc.data.setdefault("prescribed", []).append(
                 dict(body="plate", box=dict(min=[lo, -sp], max=[hi, thickness + sp]),
                      velocity=[0.0, 0.0]))
+    if plate_method == "sph" and fluid_method == "mpm":  # slip grid walls for the water
         for lo, hi, nx_ in ((x0 - cell, eps, -1.0), (span - eps, x0 + (nx + 1) * cell, 1.0)):
             sc.data.setdefault("boundaries", []).append(
                 dict(box=dict(min=[lo, thickness - eps], max=[hi, top + cell]), type="slip",
@@ -133,17 +140,22 @@ def sim_spacing(sim, body):
     return float(np.min(spacing))
 
 
+def start_heights(sim):
+    """Every particle's height now, indexed by gid, on every rank (collective)."""
+    p = sim.particles
+    gid = p["gid"][:p.n_owned]
+    y0 = np.full(int(sim.dist.max(int(gid.max()) if len(gid) else 0)) + 1, -np.inf)
+    y0[gid] = p["x"][:p.n_owned, 1]
+    return sim.dist.max_array(y0)
+
+
 def plate_run(combo="mpm_plate", on_sample=None, sample_every=0.01, dist=None, **kw):
     """Run the scene; returns (times, mid-span deflections, reference dict)."""
     sc, ref = water_on_plate(combo, **kw)
     sim = sc.simulation(dist=dist) if dist is not None else sc.simulation()
     names = [b.name for b in sim.case.bodies]
     body = names.index("plate")
-    p = sim.particles
-    gid = p["gid"][:p.n_owned]
-    y0 = np.full(int(sim.dist.max(int(gid.max()) if len(gid) else 0)) + 1, -np.inf)
-    y0[gid] = p["x"][:p.n_owned, 1]
-    y0 = sim.dist.max_array(y0)  # every particle's start height on every rank
+    y0 = start_heights(sim)
     times, w = [], []
     next_t = [0.0]
 
