@@ -1,3 +1,16 @@
 """Benchmarks: throughput against peers, scaling, speed against error.
 
 Run as `python -m pmpmsph.bench`."""
+import csv
+import os
+
+
+def write_rows(out, filename, rows):
+    """A bench's table as `<out>/<filename>`: one column per key any row has (sorted)."""
+    os.makedirs(out, exist_ok=True)
+    path = os.path.join(out, filename)
+    with open(path, "w", newline="") as fh:
+        table = csv.DictWriter(fh, fieldnames=sorted({k for r in rows for k in r}))
+        table.writeheader()
+        table.writerows(rows)
+    print(f"written {path}")

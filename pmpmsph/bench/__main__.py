@@ -75,8 +75,8 @@ def main(argv=None):
     pl = sub.add_parser("plate", help="water on an elastic clamped plate, mid-span deflection "
                         "against the clamped beam (plate_fsi.py)")
     pl.add_argument("--combos", nargs="+", default=["mpm_plate", "mpm_mpm", "sph_plate"],
-                    choices=["mpm_plate", "mpm_mpm", "sph_plate"],
-                    help="plate / water: MPM / SPH, MPM / MPM, SPH / MPM")
+                    choices=["mpm_plate", "mpm_mpm", "sph_plate", "sph_sph"],
+                    help="plate / water: MPM / SPH, MPM / MPM, TL-SPH / MPM, UL-SPH / SPH")
     pl.add_argument("--spacing", type=float, nargs="+", default=[0.01, 0.005, 0.0025])
     pl.add_argument("--end", type=float, default=0.5)
     pl.add_argument("--out", default="bench_results")

@@ -22,6 +22,7 @@ import numpy as np
 
 from pmpmsph import Scene
 
+from . import write_rows
 from ..physics.hydrostatic import tait_hydrostatic_density
 
 COMBOS = ("mpm_in_sph", "sph_in_mpm", "mpm_in_mpm", "sph_in_sph")
@@ -168,8 +169,6 @@ def float_run(combo, dist=None, **kw):
 def run(args):
     """`python -m pmpmsph.bench floats`: every block of BLOCKS in every combination; a table
     and `<out>/floats.csv`."""
-    import csv
-    import os
     import time
 
     combos = args.combos or COMBOS
@@ -193,11 +192,5 @@ def run(args):
             print(f"{combo:<12}{str(BLOCKS[i]):>28}{r['fraction']:>10.4f}"
                   f"{r['reference']:>11.4f}{r['error']:>+9.2%}{r['settle']:>9.3f}"
                   f"{r['wall']:>8.1f} {r.get('failure', '')}", flush=True)
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "floats.csv")
-    with open(path, "w", newline="") as fh:
-        out = csv.DictWriter(fh, fieldnames=sorted({k for r in rows for k in r}))
-        out.writeheader()
-        out.writerows(rows)
-    print(f"written {path}")
+    write_rows(args.out, "floats.csv", rows)
     return 0
