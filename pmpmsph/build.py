@@ -1,31 +1,23 @@
 """Build the particle state of a scene from its `Case` (seeding, materials, load fields)."""
 import numpy as np
 
+from .codes import METHOD_CODES
 from .errors import ConfigError
 from .particles import F_FIELD, J_FIELD, FieldSpec, ParticleSet
+from .physics.coupling import Coupling
 from .physics.loads import PrescribedVelocity, TractionLoads, _in_region
 from .physics.mpm import MPMStage
 from .physics.sph import SPHStage
 from .physics.tlsph import TLSPHStage
-
-
-def region_methods(case, x, method):
-    """Method codes of positions x under the case's method regions (applied in order over
-    `method`, the codes the particles have now; wall particles are left alone)."""
-    out = np.array(method, dtype=np.int8, copy=True)
-    for reg in case.regions:
-        inside = reg.geometry.contains(x) & (out != METHOD_CODES["wall"])
-        out[inside] = METHOD_CODES[reg.method]
-    return out
+from .scene.regions import region_methods
+from .scene.seeding import seed_body
 
 
 def sph_stage_class(case):
     """The SPH stage of a scene: updated-Lagrangian (seed 000) or total (seed 004)."""
     return TLSPHStage if case.sph.formulation == "total" else SPHStage
-from .scene.seeding import seed_body
 
-#: `method` field codes (kernels.sph uses the same numbers)
-METHOD_CODES = {"mpm": 0, "sph": 1, "wall": 2}
+
 #: most lattice points a scene may seed: every rank seeds every body before keeping its own
 #: particles, so this bounds the memory of one rank at set-up (about 1 kB per point)
 MAX_SEEDED = 1e8
@@ -107,7 +99,6 @@ def build_particles(case, keep=None):
         if case.sph.formulation == "total":
             ps.copy_to_halo("vol0")
     if case.coupled:
-        from .physics.coupling import Coupling
 
         for spec in Coupling.fields(case):
             ps.declare(spec)

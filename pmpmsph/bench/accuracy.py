@@ -20,11 +20,8 @@ import time
 import numpy as np
 
 from ..errors import RunError
-from .accuracy_core import cost
-
-COLUMNS = ["scene", "method", "family", "level", "knob", "error", "aux", "particles", "steps",
-           "particle_steps", "wall", "particle_bytes", "peak_rss_mb", "note"]
-
+from . import accuracy_report as report
+from .accuracy_core import COLUMNS, cost
 
 def studies():
     from .accuracy_1d import BAR, REVERSAL, SPRING, STRESS
@@ -85,19 +82,7 @@ def write_csv(path, rows):
             w.writerow({k: r.get(k, "") for k in COLUMNS})
 
 
-def read_csv(path):
-    """Rows of a scene CSV with numbers as floats (the report reads back what it wrote)."""
-    with open(path) as fh:
-        rows = list(csv.DictReader(fh))
-    for r in rows:
-        for k in COLUMNS[4:-1]:
-            r[k] = float(r[k]) if r[k] not in ("", None) else np.nan
-    return rows
-
-
 def run(args, dist):
-    from . import accuracy_report as report
-
     chosen = [s for s in studies() if not args.scenes or s["key"] in args.scenes]
     root = dist.is_root
     if root:

@@ -7,10 +7,15 @@ particles, walls included, times steps) and memory as the bytes of the particle 
 (global, allocated capacity). The peak resident set of the process is recorded too, but it
 is a high-water mark over the whole sweep, so it only ever grows from point to point.
 """
+import csv
 import resource
 import time
 
 import numpy as np
+
+#: the columns of a study's CSV, one row a point
+COLUMNS = ["scene", "method", "family", "level", "knob", "error", "aux", "particles", "steps",
+           "particle_steps", "wall", "particle_bytes", "peak_rss_mb", "note"]
 
 
 def _timed_step(sim, on_step):
@@ -71,3 +76,13 @@ def cost(sim, seconds):
     return {"particles": n, "steps": sim.step_count, "particle_steps": n * sim.step_count,
             "wall": float(sim.dist.max(seconds)), "particle_bytes": particle_bytes(sim),
             "peak_rss_mb": round(peak_rss_mb(sim.dist), 1)}
+
+
+def read_csv(path):
+    """Rows of a scene CSV with numbers as floats (the report reads back what it wrote)."""
+    with open(path) as fh:
+        rows = list(csv.DictReader(fh))
+    for r in rows:
+        for k in COLUMNS[4:-1]:
+            r[k] = float(r[k]) if r[k] not in ("", None) else np.nan
+    return rows

@@ -3,6 +3,7 @@ Ghia & Shin (1982), and the Couette start-up against its series solution. Same p
 `accuracy_1d` / `accuracy_2d`."""
 import numpy as np
 
+from ..codes import MPM
 from .accuracy_core import advance, gathered
 from .scenes import couette_exact, mpm_couette, sph_cavity, sph_couette
 
@@ -22,7 +23,7 @@ def centre_line_u(sim, dp, h_factor=1.3):
     """u at (0.5, GHIA_Y): the Shepard (normalised) Wendland interpolation of the fluid and
     wall velocities (walls: their own, the lid's U), over all ranks."""
     g = gathered(sim, ["x", "v", "mass", "rho", "method"])
-    keep = g["method"] != 0
+    keep = g["method"] != MPM
     x, u = g["x"][keep], g["v"][keep, 0]
     vol = g["mass"][keep] / g["rho"][keep]
     probes = np.c_[np.full(len(GHIA_Y), 0.5), GHIA_Y]

@@ -10,6 +10,9 @@ import numpy as np
 # Dense attribute storage (the 1.8 file format) so large attributes (a long case text, the
 # counts of many ranks) do not hit the 64 KiB object-header limit.
 LIBVER = ("v108", "latest")
+#: the snapshot file's group of per-step groups, and of the XDMF polyvertex connectivities
+GROUP = "snapshots"
+TOPOLOGY = "xdmf/polyvertex"
 
 
 def code_version():

@@ -5,8 +5,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from .h5files import open_h5
-from .snapshots import GROUP, SYM_ATTR, SYM_ORDER
+from .h5files import GROUP, open_h5
+from .snapshots import SYM_ATTR, SYM_ORDER
 
 SnapshotInfo = namedtuple("SnapshotInfo", "index name step time n_total")
 

@@ -57,14 +57,14 @@ import os
 import h5py
 import numpy as np
 
-from .h5files import (LIBVER, code_version, connectivity_dtype, open_h5, rank_file,
-                      rank_files_present, snapshot_name, write_slice, xdmf_path_for)
+from .h5files import (GROUP, LIBVER, TOPOLOGY, code_version, connectivity_dtype, open_h5,
+                      rank_file, rank_files_present, snapshot_name, write_slice,
+                      xdmf_path_for)
+from .xdmf import write_xdmf
 
 log = logging.getLogger("pmpmsph")
 
 FORMAT = "pmpmsph-snapshots-1"
-GROUP = "snapshots"
-TOPOLOGY = "xdmf/polyvertex"
 MODES = ("auto", "serial", "mpio", "per-rank")
 PRECISIONS = {"single": np.float32, "double": np.float64}
 #: components of a symmetric tensor as stored (the XDMF Tensor6 order), as (row, column)
@@ -202,8 +202,6 @@ class SnapshotWriter:
             if TOPOLOGY not in f:
                 f.create_group(TOPOLOGY)
         if self.xdmf:
-            from .xdmf import write_xdmf
-
             write_xdmf(self.path, self.xdmf_path, cache=self._xdmf_cache)
 
     def _create_rank_file(self):
@@ -303,8 +301,6 @@ class SnapshotWriter:
             self._on_root(lambda: self._write_virtual(name, meta, arrays))
         self.dist.barrier()
         if self.xdmf:
-            from .xdmf import write_xdmf
-
             self._on_root(lambda: write_xdmf(self.path, self.xdmf_path, cache=self._xdmf_cache))
         self.index += 1
         return self.index - 1

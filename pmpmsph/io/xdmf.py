@@ -46,8 +46,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from .h5files import open_h5, xdmf_path_for
-from .snapshots import GROUP, TOPOLOGY
+from .h5files import GROUP, TOPOLOGY, open_h5, xdmf_path_for
 
 log = logging.getLogger("pmpmsph")
 _warned = set()

@@ -17,15 +17,13 @@ each pair once) from `kernels.neighbours`. The integrators are in `kernels.sph_i
 import numpy as np
 
 from ..jit import njit
+from ..codes import MPM, SPH, WALL
 from ..materials.codes import TAIT_FLUID
 from ..materials.dispatch import compute_stress, wave_speed
 from ..materials.fluid import stress_tait_of_jm1
 from ..materials.tensor import det3
 from .sph_kernels import kernel_dwdr, kernel_w
 
-MPM = 0
-SPH = 1
-WALL = 2  # (MPM is used by the coupled pair forces)
 
 
 @njit
@@ -140,7 +138,7 @@ def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
 def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
               start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
               acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None,
-              dcoef=None, gradrho=None, morris_mu=None, split=False):
+              dcoef=None, gradrho=None, morris_mu=None, split=False, pw=None):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
@@ -162,29 +160,35 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     Across a material interface (mat_a != mat_b) the pair transmits only isotropic pressure,
     a frictionless contact. Between a fluid a (`fluid[mat_a]`, a Tait material) and a solid b
     (e.g. water against an elastic MPM block or obstacle) the solid point stands for a
-    mirror of the fluid particle: it carries the fluid's own pressure p_a and the fluid's
-    density at its volume V_b = m_b/rho_b (mass rho_a V_b), and it counts twice in the
-    fluid's continuity equation, as a wall does for the fluid in contact with it:
+    mirror of the fluid: it carries the fluid's density at its volume V_b = m_b/rho_b (mass
+    rho_a V_b) and the fluid pressure p_w,b extrapolated to it from its fluid neighbours
+    (`pw`, `kernels.sph_walls.mirror_pressure`: Adami et al. 2012 eq. 27, as a dummy wall),
+    and it counts twice in the fluid's continuity equation, as a wall does for the fluid in
+    contact with it:
         drho_a/dt += 2 rho_a V_b (v_a - v_b) . grad_a W_ab,
-        dv_a/dt   += -2 V_b max(p_a, 0)/rho_a grad_a W_ab   (minus the artificial viscosity),
-    the reaction acting on b. Two reasons for this form. (i) Energy: the work of these pair
-    forces, -2 m_a V_b p_a/rho_a (v_a - v_b) . grad W, is exactly the fluid's stress power
-    m_a p_a/rho_a^2 drho_a/dt of the same pair (with p_a >= 0), so the interface neither makes
-    nor destroys energy (semi-discretely; the viscosity only dissipates). The earlier contact
-    pressure max(p_a, p_b, 0) on both ends, -p_c (1/rho_a^2 + 1/rho_b^2), took the MPM
-    block's own surface pressure whenever it was the larger. Measured on the float of scene
-    7 (cases/coupled_float.toml, spacing 0.005, T = 2): with FLIP on the block (mpm.flip = 1)
-    the total energy rose by 1.6 J in 0.5 s (kinetic 0.66 J against 0.03 J) and the run
-    failed at t = 1.98 s; with the fluid's own pressure on both ends but the solid counted
-    once in the continuity it still rose from t = 0.9 s (1.3 J by t = 1.4); with this form
-    it falls monotonically and the block settles (kinetic energy 0.0025 J at t = 2; with PIC
-    on the block, as the case has it, 0.0017 J against 0.0065 J with max(p_a, p_b, 0)).
-    (ii) Balance: in a fluid at uniform pressure next to a solid lattice that tiles with it,
-    the factor 2 makes the solid points push the interface particle exactly as hard as the
-    fluid behind it pushes it towards them (with a factor 1, the interface particle is
-    pressed into the solid by half its pressure load).
+        dv_a/dt   += -V_b (max(p_a, 0) + max(p_w,b, 0))/rho_a grad_a W_ab   (minus the
+                     artificial viscosity),
+    the reaction acting on b. Without `pw` the solid point carries the fluid particle's own
+    pressure, p_w,b = p_a (the plain mirror). Why this form:
+    (i) Balance: in a fluid at uniform pressure next to a solid lattice that tiles with it,
+    the two pressures make the solid points push the interface particle exactly as hard as
+    the fluid behind it pushes it towards them; in a hydrostatic column the extrapolated
+    p_w makes the interface row feel the same pressure gradient as a row inside the fluid
+    (to round-off on a lattice, tests/unit/test_fsi_interface.py). The plain mirror gives
+    that row half of it (the solid side pushes with the row's own, higher, pressure), so
+    the water stood 1.25 spacings off a float's bottom and the float rode 0.4-0.6 spacings
+    high (docs/floats.md).
+    (ii) Energy: with the plain mirror the work of these pair forces,
+    -2 m_a V_b p_a/rho_a (v_a - v_b) . grad W, is exactly the fluid's stress power
+    m_a p_a/rho_a^2 drho_a/dt of the same pair (with p_a >= 0); with p_w it differs by
+    m_a V_b (p_a - p_w,b)/rho_a (v_a - v_b) . grad W, which vanishes as p_w,b -> p_a.
+    Measured on scene 7 (cases/coupled_float.toml, spacing 0.01, T = 2): the total energy
+    falls from 123.72 to 123.08 J (viscous water), kinetic 0.0010 J at T (plain mirror 123.23,
+    0.0039 J). Against the earlier contact pressure max(p_a, p_b, 0) on both ends, which took
+    the MPM block's own surface pressure: with FLIP on the block the total energy rose by
+    1.6 J in 0.5 s and the run failed at t = 1.98 s.
     The continuity and force of these pairs use the plain kernel gradient (also with the
-    correction below), so that (i) holds with it. A solid's own drho and L (hence its F and
+    correction below). A solid's own drho and L (hence its F and
     stress) leave such a fluid neighbour out: the fluid acts on it by pressure alone (an SPH
     solid in MPM water sheared with the water's velocities and blew up;
     physics/sph_solid.py).
@@ -262,6 +266,9 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     gx0 = gravity[0]
     gx1 = gravity[1] if dim > 1 else 0.0
     gx2 = gravity[2] if dim > 2 else 0.0
+    if pw is None:  # (the plain mirror: the solid point carries the fluid's own pressure)
+        pw = np.zeros(0)
+    with_pw = pw.shape[0] > 0
     if morris_mu is None:  # (no pairwise viscosity)
         morris_mu = np.zeros(0)
     pairwise = morris_mu.shape[0] > 0
@@ -459,10 +466,12 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
             else:  # material interface: compressive pressure only (docstring)
                 pa = -(S[a, 0] + S[a, 1] + S[a, 2]) * rho[a] * rho[a] / 3.0
                 pb = -(S[b, 0] + S[b, 1] + S[b, 2]) * rho[b] * rho[b] / 3.0
-                if mirror_a:  # m_b q = -2 V_b p_a/rho_a
-                    q = -2.0 * max(pa, 0.0) / (rho[a] * rho[b]) - pi
+                if mirror_a:  # m_b q = -V_b (p_a + p_w,b)/rho_a
+                    pm = pw[b] if with_pw else pa
+                    q = -(max(pa, 0.0) + max(pm, 0.0)) / (rho[a] * rho[b]) - pi
                 elif mirror_b:
-                    q = -2.0 * max(pb, 0.0) / (rho[a] * rho[b]) - pi
+                    pm = pw[a] if with_pw else pb
+                    q = -(max(pb, 0.0) + max(pm, 0.0)) / (rho[a] * rho[b]) - pi
                 else:
                     pc = max(pa, pb, 0.0)
                     q = -pc * (1.0 / (rho[a] * rho[a]) + 1.0 / (rho[b] * rho[b])) - pi

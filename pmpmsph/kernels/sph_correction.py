@@ -6,7 +6,7 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.tensor import cofactor3
-from .sph import SPH, WALL
+from ..codes import SPH, WALL
 from .sph_kernels import pair_gradient
 
 

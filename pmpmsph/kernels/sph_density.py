@@ -36,7 +36,7 @@ whichever end a half neighbour list puts first (the rank invariance of DESIGN.md
 import numpy as np
 
 from ..jit import njit
-from .sph import SPH
+from ..codes import SPH
 from .sph_kernels import pair_gradient
 
 #: a row whose moment matrix has det M below this keeps the plain sum for its gradient: a

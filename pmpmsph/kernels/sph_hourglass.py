@@ -58,7 +58,7 @@ import numpy as np
 
 from ..jit import njit
 from ..materials.tensor import block_inverse
-from .sph import SPH
+from ..codes import SPH
 from .sph_kernels import kernel_dwdr
 
 

@@ -5,9 +5,8 @@ shared by Euler, predictor-corrector and TVD-RK3 (`advance`), the velocity-Verle
 """
 import numpy as np
 
+from ..codes import SPH
 from ..jit import njit
-
-SPH = 1  # the `method` code of an SPH particle (kernels.sph)
 
 
 @njit

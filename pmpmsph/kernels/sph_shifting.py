@@ -22,7 +22,7 @@ at the scales of a lid-driven cavity (measured: 12 % off Ghia's centre line inst
 import numpy as np
 
 from ..jit import njit
-from .sph import MPM, SPH
+from ..codes import MPM, SPH
 from .sph_kernels import pair_gradient
 
 #: lambda below this: a free-surface particle (Marrone et al. 2010 use 0.2 for the surface

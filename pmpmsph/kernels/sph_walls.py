@@ -6,7 +6,7 @@ the viscous terms (eq. 23, no-slip: 2 v_wall - v~, free slip: +v~). Part of the 
 import numpy as np
 
 from ..jit import njit
-from .sph import WALL
+from ..codes import WALL
 from .sph_kernels import kernel_w
 
 
@@ -72,3 +72,50 @@ def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, inde
                 sigma[w, i, j] = tau[w, i, j] * inv - (p if i == j else 0.0)
         for d in range(dim):
             vg[w, d] = sgn * vt[w, d] * inv + (2.0 * v[w, d] if no_slip else 0.0)
+
+
+
+@njit
+def mirror_pressure(dim, kern, h, n_query, x, rho, sigma, mat, fluid, start, index, gravity,
+                    pw):
+    """The fluid pressure at owned solid rows next to a fluid of another material, as at a
+    dummy wall (Adami et al. 2012, eq. 27, static body):
+        p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf
+    over the fluid rows f of other materials within the support (0 where there are none).
+    The mirror pair of `kernels.sph.sph_rates` then presses on the solid with p_a + p_w, the
+    fluid's pressure at both ends, rather than with 2 p_a, the pressure of the fluid particle
+    taken for the solid point's too: in a column at rest that counts the water a kernel's
+    depth below the face, and a float rides high by a fraction of a spacing (docs/floats.md).
+    Over half neighbour lists, as `wall_state`; a halo row is left to its owner (then
+    refreshed in the halo). The body's own acceleration (eq. 27's -a_w) is left out."""
+    sw = np.zeros(n_query)
+    for w in range(n_query):
+        pw[w] = 0.0
+    for a in range(n_query):
+        for k in range(start[a], start[a + 1]):
+            b = index[k]
+            if mat[a] == mat[b]:
+                continue
+            if fluid[mat[a]] and not fluid[mat[b]]:
+                f, w = a, b
+            elif fluid[mat[b]] and not fluid[mat[a]]:
+                f, w = b, a
+            else:
+                continue
+            if w >= n_query:
+                continue  # a halo row: its owner sums it
+            r2 = 0.0
+            gr = 0.0
+            for d in range(dim):
+                dx = x[w, d] - x[f, d]
+                r2 += dx * dx
+                gr += gravity[d] * dx
+            W = kernel_w(kern, dim, np.sqrt(r2), h)
+            if W == 0.0:
+                continue
+            pf = -(sigma[f, 0, 0] + sigma[f, 1, 1] + sigma[f, 2, 2]) / 3.0
+            pw[w] += (pf + rho[f] * gr) * W
+            sw[w] += W
+    for w in range(n_query):
+        if sw[w] > 0.0:
+            pw[w] /= sw[w]

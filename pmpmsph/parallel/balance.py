@@ -31,7 +31,7 @@ import numpy as np
 
 
 NODE_COST = 0.1
-#: a particle's step cost by method code (build.METHOD_CODES: mpm, sph, wall) in MPM points,
+#: a particle's step cost by method code (codes.METHOD_CODES: mpm, sph, wall) in MPM points,
 #: measured on one rank of `bench scaling --scene coupled_dam --spacing 0.0033` (3,630 MPM
 #: points 0.26 us each, 45,753 SPH water 0.70 us, walls 0.36 us from 5,912 more of them)
 PARTICLE_COST = np.array([1.0, 2.7, 1.4])

@@ -53,12 +53,12 @@ Two interfaces (`[coupling] interface`):
 """
 import numpy as np
 
+from ..codes import METHOD_CODES, MPM, SPH
 from ..jit import njit
+from ..scene.regions import region_methods
 from .scratch import rows_at_least
 from .sph_solid import solid_force
 
-MPM = 0
-SPH = 1
 #: row keys: MPM, transition SPH (same material), SPH solid in contact, the rest
 TRANSITION, CONTACT, REST = 1, 2, 3
 
@@ -266,8 +266,6 @@ class Coupling:
 
     def _hand_over(self):
         """Relabel particles whose method region changed (walls never change)."""
-        from ..build import METHOD_CODES, region_methods
-
         p = self.p
         meth = p["method"]
         want = region_methods(self.case, p["x"], meth)

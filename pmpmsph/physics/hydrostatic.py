@@ -9,6 +9,7 @@ compression and rings (cases/sph_hydrostatic.toml).
 """
 import numpy as np
 
+from ..codes import METHOD_CODES
 from ..materials.codes import TAIT_FLUID
 from ..materials.fluid import tait_pressure
 
@@ -26,8 +27,6 @@ def fluid_columns(case, particles, materials, gravity, method, half_spacing, dis
     mask, their hydrostatic density, the material's row). `half_spacing(body, up)` is half
     the body's particle spacing along the upward direction. Collective when `dist` spans
     several ranks (the top is a global maximum); nothing without gravity."""
-    from ..build import METHOD_CODES
-
     mtypes, mparams = materials
     p = particles
     n = p.n_owned

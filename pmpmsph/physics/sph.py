@@ -43,7 +43,7 @@ from ..kernels.sph_integrate import (
     max_signal,
 )
 from ..kernels.sph_kernels import SUPPORT, kernel_w
-from ..kernels.sph_walls import wall_state
+from ..kernels.sph_walls import mirror_pressure, wall_state
 from ..parallel.decomposition import wrap_axis
 from ..particles import FieldSpec
 from .hydrostatic import fluid_columns
@@ -72,6 +72,21 @@ def diffusing_fluids(case, ignore_delta=False):
     return (case.sph.formulation == "updated"
             and (ignore_delta or case.sph.density_diffusion > 0.0)
             and any(not b.wall and case.materials[b.material].type_code == TAIT_FLUID
+                    for b in case.bodies))
+
+
+def fluid_meets_solid(case):
+    """Whether an SPH fluid (a Tait body, not a wall) can meet a solid of another material in
+    the SPH sums (an SPH solid or wall, or an MPM body in a coupled scene): the mirror pair of
+    `kernels.sph.sph_rates`, whose solid rows then carry the fluid pressure `pw`."""
+    from ..materials.codes import TAIT_FLUID
+
+    def fluid(b):
+        return case.materials[b.material].type_code == TAIT_FLUID
+
+    return (case.sph.formulation == "updated"
+            and any(b.method == "sph" and not b.wall and fluid(b) for b in case.bodies)
+            and any(not fluid(b) and (b.method == "sph" or case.coupled)
                     for b in case.bodies))
 
 
@@ -165,6 +180,8 @@ class SPHStage:
         ]
         if any(b.wall for b in case.bodies):
             out.append(FieldSpec("vg", ("dim",), migrate=False, halo=True))
+        if fluid_meets_solid(case):  # the fluid pressure at solid rows (mirror pairs)
+            out.append(FieldSpec("pw", (), migrate=False, halo=True))
         if case.sph.artificial_stress > 0:
             out.append(FieldSpec("R", (6,), migrate=False))
         if case.sph.correction:
@@ -360,9 +377,15 @@ class SPHStage:
                            p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
                            self.mtypes, self.mparams, self.gravity, self.no_slip,
                            p.with_halo("vg"))
-            if self.halo_enabled:
-                with t.phase("halo"):
-                    self.halo.refresh(("rho", "sigma", "vg"))
+        if "pw" in p:  # (after the walls: a wall of a solid material is a solid row too)
+            with t.phase("sph"):
+                mirror_pressure(self.dim, self.kern, self.h, n, x, p.with_halo("rho"),
+                                p.with_halo("sigma"), p.with_halo("mat"), self.fluid,
+                                self.start, self.index, self.gravity, p.with_halo("pw"))
+        derived = (("rho", "sigma", "vg") if "vg" in p else ()) + (("pw",) if "pw" in p else ())
+        if derived and self.halo_enabled:
+            with t.phase("halo"):
+                self.halo.refresh(derived)
         self._correction(halo=True)
         self._density_gradient()
         self._shifting_state()
@@ -386,7 +409,8 @@ class SPHStage:
                       p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
                       "fsi" in p, self.corr_tag, self._B(), self.fluid,
                       p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)),
-                      *self._diffusion(), self.morris_mu, self.split)
+                      *self._diffusion(), self.morris_mu, self.split,
+                      p.with_halo("pw") if "pw" in p else None)
             if self.hourglass > 0.0:
                 hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                                  p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),

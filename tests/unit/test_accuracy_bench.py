@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from pmpmsph.bench.__main__ import main
-from pmpmsph.bench.accuracy import COLUMNS
+from pmpmsph.bench.accuracy_core import COLUMNS
 from pmpmsph.bench.accuracy_report import converges, fastest, order_of
 
 
