@@ -79,7 +79,8 @@ def _load_for_restart(args, dist):
         try:
             return read_header(args.restart)
         except Exception as exc:  # noqa: BLE001 - bad input, whatever the reader raised
-            raise ConfigError("--restart", f"cannot read checkpoint {args.restart}: {exc}")
+            raise ConfigError("--restart",
+                              f"cannot read checkpoint {args.restart}: {exc}") from None
 
     head = dist.agree("restart", header, root_only=True)
     if args.case is not None:

@@ -155,7 +155,7 @@ class ParticleSet:
     def take(self, index):
         """Keep only the owned rows `index`, in that order (sorting, rebuilding)."""
         index = np.asarray(index, dtype=np.int64)
-        for name, arr in self.arrays.items():
+        for arr in self.arrays.values():
             arr[: len(index)] = arr[index]
         self.n_owned = self.n_total = len(index)
 

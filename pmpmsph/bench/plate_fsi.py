@@ -14,7 +14,8 @@ nu = 0.3; the membrane tension of clamped ends that cannot move takes about as m
 plate held by fixed grid nodes beyond the span), "mpm_mpm" (the MPM plate under MPM water,
 each body in its own velocity field, frictionless contact), "sph_plate" (a total-Lagrangian
 SPH plate, held by a prescribed zero velocity beyond the span, under MPM water) or "sph_sph"
-(an updated-Lagrangian SPH plate under SPH water). The side walls stand on the clamps. E is chosen so that w / L = 1 % (`plate_modulus`). Both bodies are damped
+(an updated-Lagrangian SPH plate under SPH water). The side walls stand on the clamps. E is
+chosen so that w / L = 1 % (`plate_modulus`). Both bodies are damped
 (a -= alpha v, which leaves the static state alone) so that the plate settles within a few
 of its periods, 2 pi sqrt(w / g) = 0.13 s. `python -m pmpmsph.bench plate` runs it.
 """

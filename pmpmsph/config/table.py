@@ -124,7 +124,8 @@ class Table:
         if not isinstance(v, str):
             raise ConfigError(k, f"expected a string, got {_short(v)}")
         if choices is not None and v not in choices:
-            raise ConfigError(k, f"unknown value {_short(v)}; choose one of {', '.join(sorted(choices))}")
+            raise ConfigError(k, f"unknown value {_short(v)}; "
+                                 f"choose one of {', '.join(sorted(choices))}")
         return v
 
     def boolean(self, name, default=_MISSING):

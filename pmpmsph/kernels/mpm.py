@@ -186,7 +186,8 @@ BC_CODES = {"fixed": FIXED, "slip": SLIP, "friction": FRICTION}
 def apply_grid_bc(dim, bc_node, bc_kind, bc_normal, bc_mu, bc_wall, gvel, gdv):
     """Velocity boundary conditions on grid nodes, for every velocity field.
 
-    fixed: v = the wall's velocity `bc_wall` (0 for a wall at rest; a lid slides).  slip: v.n = 0 (thesis eq. 90, non-penetration).  friction: Coulomb wall,
+    fixed: v = the wall's velocity `bc_wall` (0 for a wall at rest; a lid slides).
+    slip: v.n = 0 (thesis eq. 90, non-penetration).  friction: Coulomb wall,
     one-sided: only an approaching normal velocity (v.n > 0, n outward) is removed, and the
     tangential velocity is reduced by mu times it. The FLIP increment gdv is changed by the
     same amount as the velocity, so constrained components carry no spurious acceleration.

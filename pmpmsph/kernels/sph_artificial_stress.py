@@ -16,7 +16,7 @@ def sym_eig3(A):
     for i in range(3):
         for j in range(3):
             M[i, j] = 0.5 * (A[i, j] + A[j, i])
-    for sweep in range(30):
+    for _sweep in range(30):
         off = M[0, 1] ** 2 + M[0, 2] ** 2 + M[1, 2] ** 2
         scale = M[0, 0] ** 2 + M[1, 1] ** 2 + M[2, 2] ** 2
         if off <= 1e-30 * scale or off == 0.0:

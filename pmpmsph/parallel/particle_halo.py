@@ -108,7 +108,7 @@ class ParticleHalo:
         lists = self.send_lists()
         sends = {route: _pack(p, self.names, idx) for route, idx in lists.items()}
         counts, reqs = {}, []
-        for (side, nb, shift), rows in sends.items():
+        for (side, nb, _shift), rows in sends.items():
             # sent from my face `side`, it reaches the neighbour's opposite face
             counts[side] = np.zeros(2, np.int64)
             reqs.append(comm.Isend(np.array(rows.shape, np.int64), dest=nb,
@@ -117,7 +117,7 @@ class ParticleHalo:
                                    tag=TAG_HALO_COUNT + 100 * (1 - side)))
         MPI.Request.Waitall(reqs)
         reqs, bufs = [], []
-        for (side, nb, shift), rows in sends.items():
+        for (side, nb, _shift), rows in sends.items():
             buf = np.empty(tuple(int(c) for c in counts[side]), np.uint8)
             bufs.append(buf)
             if rows.size:

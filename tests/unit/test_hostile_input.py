@@ -75,7 +75,7 @@ def test_corpus_is_complete():
 def _tree(folder):
     """{relative path: sha256} of every file under `folder` (and the folders themselves)."""
     out = {}
-    for dirpath, dirnames, filenames in os.walk(folder):
+    for dirpath, _dirnames, filenames in os.walk(folder):
         rel = os.path.relpath(dirpath, folder)
         out[rel + "/"] = None
         for f in filenames:

@@ -43,7 +43,8 @@ def _rates(x, v, mass, rho, sigma, h, corr):
     acc, drho, L = np.zeros((n, dim)), np.zeros(n), np.zeros((n, 3, 3))
     sph_rates((0,) * dim, (0,), h, n, x, v, v, mass, rho, S, np.ones(n), method, mat,
               start, index, 0.0, 0.0, False, np.zeros((0, 6)), 4.0, 1.0, np.zeros(3), 0.0,
-              acc, drho, L, True, True, np.zeros((0, dim)), False, (0,) if corr else (), B, np.zeros(1, np.bool_))
+              acc, drho, L, True, True, np.zeros((0, dim)), False, (0,) if corr else (), B,
+              np.zeros(1, np.bool_))
     return acc, drho, L, B
 
 

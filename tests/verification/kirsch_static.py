@@ -179,7 +179,8 @@ def solve(x, vol, h, D, kappa, label):
             row = np.nonzero(sel & (np.abs(x[:, 1] - yv) < 1e-6))[0]
             row = row[np.argsort(x[row, 0])]
             x0 = (x[row[0], 0] - C) / A
-            print(f"  y - C = {(yv - C) / DP:+4.1f} dp, from x - C = {x0:.3f} a: du_y/(s a/E)", " ".join(f"{v:+.3f}" for v in du[row, 1]),
+            print(f"  y - C = {(yv - C) / DP:+4.1f} dp, from x - C = {x0:.3f} a: du_y/(s a/E)",
+                  " ".join(f"{v:+.3f}" for v in du[row, 1]),
                   "| sigma_yy error %", " ".join(f"{100 * v:+.0f}" for v in err[row]))
 
 

@@ -2,8 +2,9 @@
 (no NaN, det F > 0, no particle lost, mass exact) and show the interaction.
 
 Dam break on an elastic obstacle (cases/coupled_dam_obstacle.toml, SPH water, MPM rubber
-held at its base), here to t = 0.5 s (the impact; a coarser copy at spacing 0.04 loses a water particle
-through the 4-layer dummy wall when the run-up jet comes down, so the full spacing is used). Measured at full size
+held at its base), here to t = 0.5 s (the impact; a coarser copy at spacing 0.04 loses a water
+particle through the 4-layer dummy wall when the run-up jet comes down, so the full spacing is
+used). Measured at full size
 (spacing 0.02, t = 1 s, `python -m pmpmsph cases/coupled_dam_obstacle.toml`): the surge
 reaches the obstacle near t = 0.31 s, the top deflects by up to 1.25 cm (at t = 0.42), the
 water runs up the obstacle face to y = 2.14 and over it (1.10 cm and 1.60 with the earlier

@@ -92,7 +92,8 @@ marked slow; `-m "not slow"` leaves them out); the static figures:
 `python tests/verification/kirsch_static.py` (see its docstring). The other "before"
 columns: the same runs with `hourglass = 2.0` and/or `correction = true` removed from the
 case's [sph] (the "plain" columns are the earlier measurements, not repeated here except
-"coupled plain + hourglass"). Run times on one (shared) core: coupled 43 s, pure SPH 140 s, pure MPM 9 s.
+"coupled plain + hourglass"). Run times on one (shared) core: coupled 43 s, pure SPH 140 s,
+pure MPM 9 s.
 """
 from pathlib import Path
 

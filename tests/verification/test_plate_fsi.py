@@ -6,8 +6,8 @@ so that the clamped beam's w = q L^4 / (384 D) is 1 % of the span (4.000 mm).
 Measured (`python -m pmpmsph.bench plate --combos mpm_plate`, mean over the last 0.1 s of
 0.5 s): 3.375 mm at spacing 0.01 (two particles through the thickness, -15.6 %), 3.96 mm at
 0.005 (-0.9 %), 3.99 mm at 0.0025 (-0.2 %). The same plate under MPM water (its own velocity
-field, frictionless contact): 3.95 mm at 0.005 (-1.3 %). The linear Euler-Bernoulli formula leaves out
-Timoshenko's shear deflection (+3.4 % here) and the membrane tension of a plate whose
+field, frictionless contact): 3.95 mm at 0.005 (-1.3 %). The linear Euler-Bernoulli formula
+leaves out Timoshenko's shear deflection (+3.4 % here) and the membrane tension of a plate whose
 clamped ends cannot move (about -3 % at w / t = 0.2); they nearly cancel, so the continuum
 plate sits close to the formula, and the runs converge to it. Here at CI size: spacing
 0.005, 0.3 s (mean over 0.2-0.3 s).

@@ -38,9 +38,10 @@ CASE = Path(__file__).resolve().parents[2] / "cases" / "sph_hydrostatic.toml"
 DP = 0.025
 
 
-def _diffusion_rates(x, rho, mass, h, grad, cs=None, gravity=np.zeros(3)):
+def _diffusion_rates(x, rho, mass, h, grad, cs=None, gravity=None):
     """drho/dt of fluid rows at rest: the diffusion term alone (delta h c0 = 1), with the
     renormalised gradients `grad` or (grad None) Fourtakas' splitting with sound speeds cs."""
+    gravity = np.zeros(3) if gravity is None else gravity
     n = len(x)
     method, mat = np.ones(n, np.int8), np.zeros(n, np.int32)
     start, index = neighbour_lists(x, n, 2 * h, half=True)
