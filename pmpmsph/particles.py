@@ -108,7 +108,7 @@ class ParticleSet:
         """Set component `axis` of the owned positions x[rows] to `to`, for a mover other than
         the stages' own drifts (a prescribed velocity). Fields that follow positions move
         with them: the SPH hourglass control's displacement u, integrated beside x rather
-        than taken as x - X0 (kernels/sph_hourglass.py), by the same amount."""
+        than taken as x - X0 (kernels/sph/hourglass.py), by the same amount."""
         x = self["x"]
         if "u" in self.arrays:
             self["u"][rows, axis] += to - x[rows, axis]

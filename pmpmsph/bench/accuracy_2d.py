@@ -152,7 +152,7 @@ GAUGE_R = 2.0
 def _dam_mpm(dx, flip=1.0, velocity_update="flip"):
     """The same column (1 x 2 in a 4 wide tank) in MPM: quadratic B-splines, USL, slip walls,
     cells of 2 spacings (4 particles per cell), CFL 0.3; `flip` the PIC/FLIP blend (1, the
-    default: FLIP) or `velocity_update` "apic" / "mls" (kernels/mpm_affine.py)."""
+    default: FLIP) or `velocity_update` "apic" / "mls" (kernels/mpm/affine.py)."""
     c = 2 * dx
     mpm = dict(shape="quadratic", transfer="usl", velocity_update=velocity_update)
     if velocity_update == "flip":

@@ -8,7 +8,7 @@ from typing import Optional
 
 SHAPES = ("linear", "gimp", "quadratic", "cubic", "cpdi")
 TRANSFERS = ("usl", "usf", "musl")
-#: how G2P hands the grid velocity back to the particles (kernels/mpm.py, mpm_affine.py)
+#: how G2P hands the grid velocity back to the particles (kernels/mpm/transfers.py, affine.py)
 VELOCITY_UPDATES = ("flip", "apic", "mls")
 CONTACTS = ("single", "multi")
 METHODS = ("mpm", "sph")
@@ -24,7 +24,7 @@ class GridSpec:
     cell_size: tuple
     cells: tuple
     #: node layers stored outside the domain, and ghost node layers on each side of a slab:
-    #: 2 and 3 cover every fixed stencil (kernels/shapes.py, parallel/decomposition.py);
+    #: 2 and 3 cover every fixed stencil (kernels/mpm/shapes.py, parallel/decomposition.py);
     #: CPDI domains reaching R cells need R + 1 and R + 2 (set from `mpm.cpdi_reach`)
     pad: int = 2
     ghost: int = 3
@@ -70,7 +70,7 @@ class SPHSpec:
     formulation: str = "updated"       # updated (Gray-Monaghan) | total (seed 004)
     correction: bool = True            # kernel correction: total, Liu's full correction
                                        # (eqs. 1-3; default on); updated, the gradient
-                                       # correction of Bonet & Lok (kernels/sph.py
+                                       # correction of Bonet & Lok (kernels/sph/rates.py
                                        # `correction_matrices`; default off, load.py)
     deformation: str = "reference"     # total: F by eq. 8 (reference) or eq. 9 (rate)
     force: str = "reference"           # total: eq. 5 in the reference configuration with
@@ -84,14 +84,14 @@ class SPHSpec:
     artificial_stress: float = 0.0     # epsilon of Gray, Monaghan & Swift (0: off)
     artificial_stress_exponent: float = 4.0
     hourglass: float = 0.0             # updated solids: hourglass control factor kappa
-                                       # (kernels/sph_hourglass.py; 0: off)
+                                       # (kernels/sph/hourglass.py; 0: off)
     damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
     density_diffusion: float = 0.1     # fluids: delta of delta-SPH (Antuono 2010; 0: off)
     density_diffusion_model: str = "fourtakas"  # the hydrostatic splitting of Fourtakas
                                        # et al. (2019; no gradient pass), or the
                                        # renormalised gradient of Antuono et al. (2010)
     shifting: float = 0.0              # fluids: A of particle shifting D = A h |v| dt
-                                       # (Lind et al. 2012; 0: off; kernels/sph_shifting.py)
+                                       # (Lind et al. 2012; 0: off; kernels/sph/shifting.py)
     wall_no_slip: bool = True          # dummy walls: no-slip or free slip
     pressure_min: float = float("-inf")  # fluids: floor of the pressure (0: no tension)
     hydrostatic: bool = False          # fluids start at the hydrostatic density

@@ -136,7 +136,7 @@ def _hourglass(t, formulation, integrator):
     kappa = t.number("hourglass", 0.0, min=0.0)
     if kappa > 0.0 and formulation != "updated":
         raise ConfigError(t.key("hourglass"), "the hourglass control is for the updated "
-                          "formulation (kernels/sph_hourglass.py)")
+                          "formulation (kernels/sph/hourglass.py)")
     if kappa > 0.0 and integrator != "verlet":
         raise ConfigError(t.key("hourglass"), f"the hourglass control needs sph.integrator = "
                           f"'verlet' (got '{integrator}')")
@@ -161,7 +161,7 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     formulation = t.string("formulation", "updated", choices=SPH_FORMULATIONS)
     if h is None:
         # total-Lagrangian SPH: 1.4 spacings, the top of seed 004's range, delays the
-        # free-edge mode of its force/F combination (kernels/tlsph.py)
+        # free-edge mode of its force/F combination (kernels/sph/tlsph.py)
         default = 1.4 if formulation == "total" else 1.3
         h = t.number("h_factor", default, min_open=0.5, max=4.0) * spacing
     elif not 0.5 * spacing < h <= 4.0 * spacing:  # as h_factor: no neighbour / too many
@@ -175,7 +175,7 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     av_alpha = visc.number("alpha", 1.0, min=0.0)
     av_beta = visc.number("beta", 1.0, min=0.0)
     # the fluids' physical viscosity (their material's mu): pairwise velocity differences
-    # (Morris, Fox & Zhu 1997), or the divergence of sigma = 2 mu dev(d) (kernels/sph.py)
+    # (Morris, Fox & Zhu 1997), or the divergence of sigma = 2 mu dev(d) (kernels/sph/rates.py)
     laminar = visc.string("laminar", "morris", choices=("morris", "stress"))
     visc.finish()
     walls = t.string("walls", "no_slip", choices=("no_slip", "slip"))
@@ -188,27 +188,27 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         formulation=formulation,
         # kernel correction: Liu's full correction in the total formulation (seed 004 eqs.
         # 1-3, on by default), the gradient correction of Bonet & Lok in the updated one
-        # (kernels/sph.py `correction_matrices`, off by default)
+        # (kernels/sph/rates.py `correction_matrices`, off by default)
         correction=t.boolean("correction", formulation == "total"),
         deformation=t.string("deformation", "reference", choices=("reference", "rate")),
         # total: eq. 5 in the reference configuration (P = J sigma F^-T, the exact adjoint
         # of F by eq. 8: energy-consistent, stable in bending) by default; "current" is the
-        # seed's form, kept to reproduce seed 004's figures (kernels/tlsph.py)
+        # seed's form, kept to reproduce seed 004's figures (kernels/sph/tlsph.py)
         force=t.string("force", "reference", choices=("current", "reference")),
         integrator=integrator, av_alpha=av_alpha, av_beta=av_beta, laminar=laminar,
         artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
-        # the odd-even mode of the corrected solid (kernels/sph_hourglass.py), off by default
+        # the odd-even mode of the corrected solid (kernels/sph/hourglass.py), off by default
         hourglass=_hourglass(t, formulation, integrator),
         damping=t.number("damping", 0.0, min=0.0),
-        # delta of the delta-SPH density diffusion of fluids (kernels/sph_density.py);
+        # delta of the delta-SPH density diffusion of fluids (kernels/sph/density.py);
         # 0.1 is Antuono et al.'s (2010) value, 0 switches it off
         density_diffusion=t.number("density_diffusion", 0.1, min=0.0, max=1.0),
         # Fourtakas et al. (2019), DualSPHysics' default: as quiet at rest as Antuono's
         # (tests/verification/test_sph_density_diffusion.py) without the gradient pass
         density_diffusion_model=t.string("density_diffusion_model", "fourtakas",
                                          choices=("fourtakas", "antuono")),
-        # A of particle shifting (kernels/sph_shifting.py), off by default; Skillen et al.
+        # A of particle shifting (kernels/sph/shifting.py), off by default; Skillen et al.
         # (2013) use 2: beyond 10 a particle would move about its spacing a step
         shifting=t.number("shifting", 0.0, min=0.0, max=10.0),
         wall_no_slip=walls == "no_slip",

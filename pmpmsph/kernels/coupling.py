@@ -19,7 +19,7 @@ SPH rates.
 import numpy as np
 
 from ..jit import njit
-from .shapes import cpdi_domain, n_corners, node_counts, stencil
+from .mpm.shapes import cpdi_domain, n_corners, node_counts, stencil
 
 
 @njit
@@ -28,7 +28,7 @@ def add_gathered(dim_tag, kind_tag, lo_row, hi_row, x, v, lp, Fdom, pfield, gvec
     """v_p += scale sum_I N_Ip g_I for the rows [lo_row, hi_row), g_I = gvec[field_p, I], or
     gvec[field_p, I] / m_I when `gmass` is given (nodes lighter than `mass_cutoff` then give
     nothing: the grid solve keeps them at rest). `lp`, `Fdom`, `pfield` as in
-    `kernels.mpm.p2g` (None when the scene has none); positions are unchanged."""
+    `kernels.mpm.transfers.p2g` (None when the scene has none); positions are unchanged."""
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
     st[:dim] = strides

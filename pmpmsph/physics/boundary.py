@@ -5,7 +5,7 @@ A boundary with `until = t` is a gate: it acts while time < t and is then remove
 """
 import numpy as np
 
-from ..kernels.mpm import BC_CODES, FRICTION, apply_grid_bc, mirror_grid_bc
+from ..kernels.mpm.transfers import BC_CODES, FRICTION, apply_grid_bc, mirror_grid_bc
 
 
 class GridBoundaries:

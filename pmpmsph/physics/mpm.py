@@ -11,18 +11,18 @@ fields (`physics.sph_solid`): they scatter mass, momentum and their SPH force (n
 take back the velocity change the contact of the force solve made to their field.
 PIC-USL without damping scatters p + dt f in one go (`fold_force`, mpm88's form).
 `mpm.velocity_update` = "apic" / "mls": the passes that move the particles hand them v_p and
-the affine matrix C_p (kernels/mpm_affine.py), and P2G scatters m_p (v_p + C_p (x_I - x_p)).
+the affine matrix C_p (kernels/mpm/affine.py), and P2G scatters m_p (v_p + C_p (x_I - x_p)).
 """
 from contextlib import contextmanager
 
 import numpy as np
 
-from ..kernels.contact import multi_field_contact, touching_separation
+from ..kernels.mpm.contact import multi_field_contact, touching_separation
 from ..kernels.coupling import gather_increment, grid_force_kick
-from ..kernels.mpm import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
-from ..kernels.mpm_affine import g2p_affine, p2g_affine
+from ..kernels.mpm.transfers import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
+from ..kernels.mpm.affine import g2p_affine, p2g_affine
 from ..kernels.partition import cell_keys
-from ..kernels.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
+from ..kernels.mpm.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
 from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
@@ -64,7 +64,7 @@ class MPMStage:
         used = {list(case.materials).index(b.material) for b in case.bodies
                 if b.method == "mpm" or case.regions}
         self.mat_tag = material_tag(self.mtypes[sorted(used)])
-        self.pic_tag = (0,) if self.flip == 0.0 else ()  # PIC, for `kernels.mpm.g2p`
+        self.pic_tag = (0,) if self.flip == 0.0 else ()  # PIC, for `kernels.mpm.transfers.g2p`
         # PIC-USL without damping needs only the updated nodal velocity, so P2G scatters
         # p + dt f into the momentum (one scatter instead of two, as Taichi's mpm88 does)
         # (the conservative coupling needs the nodal forces apart: not folded)
@@ -147,7 +147,7 @@ class MPMStage:
 
     def _contact_gap(self):
         """Displacement-check threshold of multi-field contact for this shape function."""
-        from ..kernels.shapes import weights_1d
+        from ..kernels.mpm.shapes import weights_1d
 
         def weight(r):  # weight of the node at 0 seen from a particle at distance r
             base, w, _ = weights_1d(self.kind, 10.0 + r, 0.25)
@@ -166,7 +166,7 @@ class MPMStage:
         if any(b.stress for b in case.bodies):
             out.append(FieldSpec("prestress", (3, 3)))
         if case.mpm.velocity_update in ("apic", "mls"):
-            out.append(FieldSpec("C", (3, 3)))  # the affine velocity (kernels/mpm_affine.py)
+            out.append(FieldSpec("C", (3, 3)))  # the affine velocity (kernels/mpm/affine.py)
         return out
 
     # -- the loops ------------------------------------------------------------------------------

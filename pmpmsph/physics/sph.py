@@ -23,27 +23,27 @@ force, refreshes it in the halo: the rates then use corrected gradients (see `sp
 import numpy as np
 
 from ..kernels.neighbours import moved_beyond, neighbour_lists
-from ..kernels.sph import (
+from ..kernels.sph.rates import (
     pair_stress,
     sound_speeds,
     sph_rates,
     sph_stress,
     sync_ghost_velocity,
 )
-from ..kernels.sph_artificial_stress import artificial_stress
-from ..kernels.sph_correction import correction_matrices
-from ..kernels.sph_density import density_gradient
-from ..kernels.sph_shifting import shift_positions, shifting_state
-from ..kernels.sph_hourglass import hourglass_fit, hourglass_forces
-from ..kernels.sph_integrate import (
+from ..kernels.sph.artificial_stress import artificial_stress
+from ..kernels.sph.correction import correction_matrices
+from ..kernels.sph.density import density_gradient
+from ..kernels.sph.shifting import shift_positions, shifting_state
+from ..kernels.sph.hourglass import hourglass_fit, hourglass_forces
+from ..kernels.sph.integrate import (
     add_scaled,
     advance,
     cayley_update,
     first_outside,
     max_signal,
 )
-from ..kernels.sph_kernels import SUPPORT, kernel_w
-from ..kernels.sph_walls import mirror_pressure, wall_state
+from ..kernels.sph.kernel_functions import SUPPORT, kernel_w
+from ..kernels.sph.walls import mirror_pressure, wall_state
 from ..parallel.decomposition import wrap_axis
 from ..particles import FieldSpec
 from .hydrostatic import fluid_columns
@@ -60,7 +60,7 @@ SKIN = 0.25
 
 def shifting_fluids(case):
     """Whether the scene's SPH fluids are shifted (`[sph] shifting` > 0, kernels/
-    sph_shifting.py): an updated-Lagrangian scene with a Tait fluid body."""
+    sph/shifting.py): an updated-Lagrangian scene with a Tait fluid body."""
     return case.sph.shifting > 0.0 and diffusing_fluids(case, ignore_delta=True)
 
 
@@ -78,7 +78,7 @@ def diffusing_fluids(case, ignore_delta=False):
 def fluid_meets_solid(case):
     """Whether an SPH fluid (a Tait body, not a wall) can meet a solid of another material in
     the SPH sums (an SPH solid or wall, or an MPM body in a coupled scene): the mirror pair of
-    `kernels.sph.sph_rates`, whose solid rows then carry the fluid pressure `pw`."""
+    `kernels.sph.rates.sph_rates`, whose solid rows then carry the fluid pressure `pw`."""
     from ..materials.codes import TAIT_FLUID
 
     def fluid(b):
@@ -107,7 +107,7 @@ class SPHStage:
         from ..materials.codes import TAIT_FLUID
 
         mtypes, mparams = materials
-        # a fluid's viscosity acts pairwise (Morris et al. 1997, kernels/sph.py) or through
+        # a fluid's viscosity acts pairwise (Morris et al. 1997, kernels/sph/rates.py) or through
         # its stress: mu per material where it is pairwise, else 0; None if no fluid is
         pairwise = [mtypes[i] == TAIT_FLUID and spec.laminar == "morris"
                     for i in range(len(mtypes))]
@@ -133,10 +133,10 @@ class SPHStage:
         # (the total formulation corrects its own kernel: TLSPHStage, kernel_correction)
         self.corr = bool(spec.correction) and spec.formulation == "updated"
         self.corr_tag = (0,) if self.corr else ()
-        # hourglass control of the solids (kernels/sph_hourglass.py; needs X0)
+        # hourglass control of the solids (kernels/sph/hourglass.py; needs X0)
         self.hourglass = spec.hourglass if spec.formulation == "updated" else 0.0
         # per material: a fluid (Tait) meets a solid of another material through the mirror
-        # pair of kernels/sph.py's sph_rates
+        # pair of kernels/sph/rates.py's sph_rates
         self.fluid = np.array([code == TAIT_FLUID for code in mtypes], np.bool_)
         self._M = np.zeros((0, 3, 3))
         self._A = np.zeros((0, 3, 3))
@@ -149,7 +149,7 @@ class SPHStage:
                                    if mtypes[i] == TAIT_FLUID else 0.0
                                    for i in range(len(mtypes))])
         # Fourtakas et al. (2019): the hydrostatic part of a pair's density difference is
-        # taken out instead of the renormalised gradients (`kernels.sph_density`)
+        # taken out instead of the renormalised gradients (`kernels.sph.density`)
         self.split = self.dcoef is not None and spec.density_diffusion_model == "fourtakas"
         # particle shifting: A h of D = A h |v| dt (0: off)
         self.shift_coef = spec.shifting * self.h if shifting_fluids(case) else 0.0
@@ -502,7 +502,7 @@ class SPHStage:
 
     def _drift(self, n, dt):
         """x += dt v over the owned SPH rows, and the hourglass control's displacement
-        u += dt v with them (kernels/sph_hourglass.py: u keeps its own rounding)."""
+        u += dt v with them (kernels/sph/hourglass.py: u keeps its own rounding)."""
         p = self.p
         add_scaled(self.dim_tag, n, p["method"], dt, p["x"], p["v"])
         if self.hourglass > 0.0:

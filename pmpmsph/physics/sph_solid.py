@@ -6,7 +6,7 @@ test_coupled_sph_solid.py (numbers below at its spacing 0.01, T = 2 s).
 The rule, automatic in a coupled scene; (2) needs one velocity field per body
 (`[mpm] contact = "multi"`):
 
-  1. Pressure (kernels/sph.py, `sph_rates`). The MPM fluid's points within the support of
+  1. Pressure (kernels/sph/rates.py, `sph_rates`). The MPM fluid's points within the support of
      the SPH solid's particles are SPH neighbours of the solid, as in seed 000. A fluid-solid
      pair is the mirror pair of the forward float (the fluid's own pressure on both ends,
      twice the solid's volume); its force pushes the solid particle and its reaction acts
@@ -28,7 +28,7 @@ The rule, automatic in a coupled scene; (2) needs one velocity field per body
      acceleration; the grid adds gravity back, and their stress is in that force, so it is
      not scattered again): that field's nodal velocity is then the solid's own prediction
      for the end of the step. The frictionless multi-field contact of Bardenhagen et al.
-     (kernels/contact.py) removes the approach of the fluid's field towards it, so the
+     (kernels/mpm/contact.py) removes the approach of the fluid's field towards it, so the
      solid's motion compresses the fluid on the grid as it would a fluid MPM body; the change
      dv_c the contact made to the solid's field is gathered back to its SPH particles,
      v_p += sum_I N_I dv_c,I (kernels/coupling.py, `gather_increment`), so the fluid's loss

@@ -14,16 +14,16 @@ State (x, v) and, with ``deformation = "rate"``, F; each *evaluation* at a state
     -> L by eq. 6 when eq. 9 or the current force needs the current configuration
 and the integrators (TVD-RK3 as in seed 004 §5, predictor-corrector, Verlet) combine them.
 The forces are scatters over all listed rows, so halo rows take part with their own lists.
-See `pmpmsph.kernels.tlsph` for the index conventions and the stability findings.
+See `pmpmsph.kernels.sph.tlsph` for the index conventions and the stability findings.
 """
 import numpy as np
 
 from ..errors import RunError
 from ..kernels.neighbours import neighbour_lists
-from ..kernels.sph import sph_stress_all
-from ..kernels.sph_integrate import add_scaled, first_outside
-from ..kernels.sph_kernels import SUPPORT
-from ..kernels.tlsph import (deformation_gradient, first_piola, internal_force,
+from ..kernels.sph.rates import sph_stress_all
+from ..kernels.sph.integrate import add_scaled, first_outside
+from ..kernels.sph.kernel_functions import SUPPORT
+from ..kernels.sph.tlsph import (deformation_gradient, first_piola, internal_force,
                              kernel_correction, velocity_gradient)
 from ..particles import FieldSpec
 from .sph import HALO_MARGIN, SPHStage

@@ -67,7 +67,7 @@ def test_plate_with_hole_equals_one_rank(hourglass):
     SPH hourglass control of the case (2) and without it (0). Measured on 2 ranks after 150
     steps: 5e-16 (v) with the control, 1e-18 without. (When the control worked on
     positions instead of displacements, its small pair residual amplified their rounding
-    and the two runs parted by 9e-9: kernels/sph_hourglass.py.)"""
+    and the two runs parted by 9e-9: kernels/sph/hourglass.py.)"""
     from pathlib import Path
 
     from pmpmsph import load_case_file

@@ -9,8 +9,8 @@ the last one because sum_I x_I (x) grad N_I = F diag(lp) (F diag(lp))^-1 = I for
 import numpy as np
 import pytest
 
-from pmpmsph.kernels.mpm import p2g
-from pmpmsph.kernels.shapes import CPDI, static_tags
+from pmpmsph.kernels.mpm.transfers import p2g
+from pmpmsph.kernels.mpm.shapes import CPDI, static_tags
 
 
 def one_particle_p2g(dim, F, lp_cells, sigma, x_p, dx=0.1, nodes=16):

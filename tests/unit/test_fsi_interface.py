@@ -1,15 +1,15 @@
-"""The fluid-solid pair of kernels/sph.py's sph_rates (a solid point as the fluid's mirror).
+"""The fluid-solid pair of kernels/sph/rates.py's sph_rates (a solid point as the fluid's mirror).
 With the fluid's own pressure at both ends (the plain mirror) its forces do exactly the work
 the fluid's continuity stores (energy neither made nor lost by the interface); with the
-fluid pressure extrapolated to the solid point (`kernels.sph_walls.mirror_pressure`, what
+fluid pressure extrapolated to the solid point (`kernels.sph.walls.mirror_pressure`, what
 the SPH stage uses) a fluid row next to a solid lattice feels a hydrostatic pressure field
 exactly as a row inside the fluid does. Both are equal and opposite, and at uniform
 pressure the interface particle is in balance."""
 import numpy as np
 
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph import sph_rates
-from pmpmsph.kernels.sph_walls import mirror_pressure
+from pmpmsph.kernels.sph.rates import sph_rates
+from pmpmsph.kernels.sph.walls import mirror_pressure
 
 MPM, SPH = 0, 1
 

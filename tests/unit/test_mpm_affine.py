@@ -1,4 +1,4 @@
-"""APIC (Jiang et al. 2015) and MLS-MPM (Hu et al. 2018) transfers (kernels/mpm_affine.py).
+"""APIC (Jiang et al. 2015) and MLS-MPM (Hu et al. 2018) transfers (kernels/mpm/affine.py).
 
 1. Both transfers are exact for an affine velocity field v(x) = A x + b, for every shape
    function in 1D, 2D and 3D: particles carrying v_p = A x_p + b and C_p = A scatter nodal
@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from pmpmsph.errors import ConfigError
-from pmpmsph.kernels.mpm_affine import g2p_affine, p2g_affine
-from pmpmsph.kernels.shapes import CUBIC, GIMP, LINEAR, QUADRATIC, static_tags
+from pmpmsph.kernels.mpm.affine import g2p_affine, p2g_affine
+from pmpmsph.kernels.mpm.shapes import CUBIC, GIMP, LINEAR, QUADRATIC, static_tags
 from pmpmsph.scene_api import Scene
 
 NODES = 12

@@ -1,15 +1,15 @@
-"""P2G and G2P (kernels/mpm.py, thesis eqs. 65 and 80-82) against the transfer written out node
-by node: N_I = prod_a w_a, grad N_I = (dw_0 w_1 w_2, w_0 dw_1 w_2, w_0 w_1 dw_2) / dx from the
-1D weights of `kernels.shapes.weights_1d`. The kernels build the same sums one axis at a time
-(sum factorisation), so they must agree to rounding for every tensor-product shape function
-in 1D, 2D and 3D (CPDI's corners: tests/unit/test_cpdi.py's closed forms)."""
+"""P2G and G2P (kernels/mpm/transfers.py, thesis eqs. 65 and 80-82) against the transfer written
+out node by node: N_I = prod_a w_a, grad N_I = (dw_0 w_1 w_2, w_0 dw_1 w_2, w_0 w_1 dw_2) / dx
+from the 1D weights of `kernels.mpm.shapes.weights_1d`. The kernels build the same sums one axis
+at a time (sum factorisation), so they must agree to rounding for every tensor-product shape
+function in 1D, 2D and 3D (CPDI's corners: tests/unit/test_cpdi.py's closed forms)."""
 import itertools
 
 import numpy as np
 import pytest
 
-from pmpmsph.kernels.mpm import g2p, p2g
-from pmpmsph.kernels.shapes import CUBIC, GIMP, LINEAR, QUADRATIC, static_tags, weights_1d
+from pmpmsph.kernels.mpm.transfers import g2p, p2g
+from pmpmsph.kernels.mpm.shapes import CUBIC, GIMP, LINEAR, QUADRATIC, static_tags, weights_1d
 from pmpmsph.materials import material_from_table
 from pmpmsph.materials.dispatch import material_tag
 

@@ -3,7 +3,7 @@ gradient (sum_I grad N_I = 0 and sum_I x_I grad N_I = identity), derivative cons
 import numpy as np
 import pytest
 
-from pmpmsph.kernels.shapes import CUBIC, GIMP, LINEAR, QUADRATIC, STENCIL_WIDTH, weights_1d
+from pmpmsph.kernels.mpm.shapes import CUBIC, GIMP, LINEAR, QUADRATIC, STENCIL_WIDTH, weights_1d
 
 KINDS = [LINEAR, GIMP, QUADRATIC, CUBIC]
 

@@ -1,5 +1,5 @@
 """Kernel gradient correction of the updated-Lagrangian SPH solid (`[sph] correction = true`;
-kernels/sph.py `correction_matrices` and `sph_rates`; Bonet & Lok, seed 004 §2.1 for the
+kernels/sph/rates.py `correction_matrices` and `sph_rates`; Bonet & Lok, seed 004 §2.1 for the
 linear completeness it restores): on a jittered disc with a free surface the corrected
 velocity gradient is exact for linear velocity fields (the plain one is not, at the
 surface), and the corrected forces conserve momentum and angular momentum and are the
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph import sph_rates
-from pmpmsph.kernels.sph_correction import correction_matrices
+from pmpmsph.kernels.sph.rates import sph_rates
+from pmpmsph.kernels.sph.correction import correction_matrices
 
 H_FACTOR = 1.3
 
@@ -89,7 +89,7 @@ def test_corrected_forces_conserve_momentum_and_are_the_adjoint_of_L():
 def test_correction_matrix_inverts_the_moment_matrix_in_3d():
     """B_a = (M_a^T)^-1 on a jittered 3D lattice (the 3D inverse goes through the cofactor
     matrix): B_a M_a^T = I for every row whose M_a is invertible enough to be corrected."""
-    from pmpmsph.kernels.sph_correction import CORRECTION_MIN_DET
+    from pmpmsph.kernels.sph.correction import CORRECTION_MIN_DET
 
     rng = np.random.default_rng(0)
     g = np.arange(5) * 0.1

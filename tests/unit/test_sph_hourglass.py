@@ -1,10 +1,10 @@
-"""Hourglass control of the updated SPH solid (kernels/sph_hourglass.py, `[sph] hourglass`)."""
+"""Hourglass control of the updated SPH solid (kernels/sph/hourglass.py, `[sph] hourglass`)."""
 import numpy as np
 import pytest
 
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph_hourglass import hourglass_fit, hourglass_forces
-from pmpmsph.kernels.sph_kernels import kernel_dwdr
+from pmpmsph.kernels.sph.hourglass import hourglass_fit, hourglass_forces
+from pmpmsph.kernels.sph.kernel_functions import kernel_dwdr
 
 DP = 0.1
 H = 1.3 * DP

@@ -5,9 +5,9 @@ lost, and it stops their approach."""
 import numpy as np
 
 from pmpmsph.config.case import GridSpec
-from pmpmsph.kernels.contact import multi_field_contact, touching_separation
-from pmpmsph.kernels.mpm import WITH_FORCE, grid_velocity, p2g
-from pmpmsph.kernels.shapes import GIMP, static_tags, weights_1d
+from pmpmsph.kernels.mpm.contact import multi_field_contact, touching_separation
+from pmpmsph.kernels.mpm.transfers import WITH_FORCE, grid_velocity, p2g
+from pmpmsph.kernels.mpm.shapes import GIMP, static_tags, weights_1d
 from pmpmsph.kernels.coupling import gather_increment
 from pmpmsph.physics.grid import Grid
 

@@ -1,11 +1,11 @@
-"""Corrected-kernel SPH kernels of seed 004 (pmpmsph.kernels.tlsph), eqs. 1-9."""
+"""Corrected-kernel SPH kernels of seed 004 (pmpmsph.kernels.sph.tlsph), eqs. 1-9."""
 import numpy as np
 import pytest
 from tlsph_reference import corrected_kernel_values, fd_kernel_gradient
 
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph_kernels import CUBIC, WENDLAND_C2, kernel_dwdr, kernel_w
-from pmpmsph.kernels.tlsph import (current_volume, deformation_gradient, energies, expm3,
+from pmpmsph.kernels.sph.kernel_functions import CUBIC, WENDLAND_C2, kernel_dwdr, kernel_w
+from pmpmsph.kernels.sph.tlsph import (current_volume, deformation_gradient, energies, expm3,
                                    first_piola, internal_force, kernel_correction,
                                    material_stress, update_F_exp, velocity_gradient)
 from pmpmsph.materials import material_from_table

@@ -1,10 +1,10 @@
 """Reference values for the corrected-kernel tests (seed 004, eqs. 1-4): the corrected
 kernel W~_b at any point, by dense sums over every particle, and its finite-difference
-gradient, which `pmpmsph.kernels.tlsph.kernel_correction` must reproduce."""
+gradient, which `pmpmsph.kernels.sph.tlsph.kernel_correction` must reproduce."""
 import numpy as np
 
 from pmpmsph.jit import njit
-from pmpmsph.kernels.sph_kernels import kernel_w
+from pmpmsph.kernels.sph.kernel_functions import kernel_w
 from pmpmsph.materials.tensor import block_inverse
 
 

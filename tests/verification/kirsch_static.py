@@ -3,7 +3,7 @@
 The case's particles within r < R_FREE + 4 h of the hole centre (R_FREE = 2 a); the exact
 Kirsch displacement prescribed on r >= R_FREE; the linear small-strain SPH solid's strain
 energy sum_a V_a 1/2 eps_a : C : eps_a (plane strain, over the rows whose kernel support
-lies inside the set), plus optionally the hourglass energy of kernels/sph_hourglass.py,
+lies inside the set), plus optionally the hourglass energy of kernels/sph/hourglass.py,
 minimised over the free rows by a dense solve. The gradient operators are linear:
 grad u_a = sum_b (u_b - u_a) (x) c_ab, and the nodal force is their adjoint, as in
 `sph_rates`. Prints sigma_yy / Kirsch - 1 on the mid-line rows at 1.06, 1.19, 1.31 a, for the
@@ -37,7 +37,7 @@ from test_coupled_plate import (
 
 from pmpmsph import load_case_file
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph_kernels import kernel_dwdr, kernel_w
+from pmpmsph.kernels.sph.kernel_functions import kernel_dwdr, kernel_w
 from pmpmsph.parallel.distributor import Distributor
 from pmpmsph.simulation import Simulation
 
@@ -85,9 +85,9 @@ def grad_quadratic(x, vol, h, a, b):
 
 
 def grad_rkpm(x, vol, h, start, index):
-    """Seed 004's corrected kernel (kernels/tlsph.py), its full gradient G_ab:
+    """Seed 004's corrected kernel (kernels/sph/tlsph.py), its full gradient G_ab:
     grad u_a = sum_b V_b u_b (x) G_ab = sum_b V_b (u_b - u_a) (x) G_ab."""
-    from pmpmsph.kernels.tlsph import kernel_correction
+    from pmpmsph.kernels.sph.tlsph import kernel_correction
     wt, gw = np.zeros(len(index)), np.zeros((len(index), 3))
     kernel_correction(x, vol, start, index, h, 0, 2, True, wt, gw)
     return vol[index][:, None] * gw[:, :2]
@@ -122,7 +122,7 @@ def elasticity():
 
 def hourglass(x, vol, h, D, inner, kappa):
     """Hessian of kappa E/2 sum_a V_a sum_b V_b phi_ab |u_b - u_a - G_a x_ba|^2,
-    phi = -W'(r)/r, G_a = D_a u (the energy of kernels/sph_hourglass.py, small strain)."""
+    phi = -W'(r)/r, G_a = D_a u (the energy of kernels/sph/hourglass.py, small strain)."""
     K = np.zeros((2 * len(x), 2 * len(x)))
     for a in np.nonzero(inner)[0]:
         cols, Da = D[a]

@@ -30,12 +30,12 @@ waterline, 0.07 wide, turns 1 % of the weight into 2 mm of draft). With FLIP on 
 (mpm.flip = 1) the water gains energy (spacing 0.01: 123.7 -> 127.2 J by t = 2; spacing
 0.005: the run fails at t = 1.98 s): the points' sub-cell velocity modes, which the grid
 does not see, act on the water through the pair forces.
-With the fluid-solid mirror pair of kernels/sph.py (the water's own pressure on both ends,
+With the fluid-solid mirror pair of kernels/sph/rates.py (the water's own pressure on both ends,
 the solid counted twice in the water's continuity: the interface makes no energy) in place
 of the contact pressure max(p_a, p_b, 0): spacing 0.01, t = 1.5-2 s: mean draft 0.1177 (+3.5 %;
 triangle +6.6 %), energy 123.72 -> 123.23 J, kinetic 0.0039 J at t = 2;
 spacing 0.005: 0.1196-0.1204 (+6 %), kinetic 0.0017 J at t = 2.
-With the fluid pressure extrapolated to the solid points (this build; kernels/sph_walls.py
+With the fluid pressure extrapolated to the solid points (this build; kernels/sph/walls.py
 mirror_pressure) at spacing 0.01: mean draft 0.1171 (+3.0 %; triangle +6.1 %), energy
 123.72 -> 123.08 J, kinetic 0.0010 J at t = 2.
 """

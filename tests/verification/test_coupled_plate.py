@@ -32,7 +32,7 @@ first MPM point 1.10 s at 3.06 a). Pure SPH is pulled by a prescribed velocity (
 hourglass control); its errors are against Kirsch scaled by that. The coupled result does
 not depend on h or kappa much: h = 1.1 / 1.5 dp: -8.2 / +2.2 / +5.8 % and -8.2 / +3.6 /
 +6.5 %; kappa = 1 / 4: -8.9 / +2.3 / +5.9 % and -9.0 / +2.2 / +5.8 % (kappa = 10 is past the
-stable time step of CFL 0.3: kernels/sph_hourglass.py).
+stable time step of CFL 0.3: kernels/sph/hourglass.py).
 
 Why the surface row was 19 % short, and what the hourglass control does. Two parts.
 (1) The velocity gradient: applied to the exact Kirsch displacement on this particle set
@@ -47,7 +47,7 @@ in sign from particle to particle, 0.1-0.3 s a/E) with stress errors of -23, -5,
 the rows at 0.5, 1.5, 2.5, 3.5 dp above the mid line next to the hole: the nodal force is
 not exact at the stair-stepped surface, and its error goes into the mode that the corrected
 gradient does not see (on a lattice the pair terms of an alternating field cancel). The
-hourglass control (kernels/sph_hourglass.py) gives that mode stiffness without touching
+hourglass control (kernels/sph/hourglass.py) gives that mode stiffness without touching
 homogeneous deformations; in the same static problem (error at 1.06 / 1.19 / 1.31 a):
 
   corrected gradient                           -23.2 / -4.8 / +1.8 %
@@ -55,7 +55,7 @@ homogeneous deformations; in the same static problem (error at 1.06 / 1.19 / 1.3
                                                -10.0 / +0.2 / +2.7 %   (checkerboard gone)
   quadratic (WLS) gradient, exact for the Kirsch field to 1 %:  -24.8 / -5.1 / +2.4 %,
       with the control (kappa = 3 / 10 x E): -9.3 / -8.5 % at the surface row
-  seed 004's corrected kernel (kernels/tlsph.py): -17.4 / -0.8 / +0.4 %, with the control
+  seed 004's corrected kernel (kernels/sph/tlsph.py): -17.4 / -0.8 / +0.4 %, with the control
       (kappa = 3 x E): -5.7 / +0.7 / +3.1 %
   h = 1.2 / 1.5 / 2.0 dp, corrected: -22.9 / -22.5 / -20.0 % at the surface row; with the
       control (kappa = 3 x E): -9.7 / -9.4 / -10.2 %
@@ -214,8 +214,8 @@ def test_kirsch_field_velocity_gradient_at_the_hole_surface():
     against Kirsch at the particle. Plain kernel: the surface row 23 % short (the kernel cut
     by the free surface), the next rows within 3 %; corrected: 5 % short, then within 1.5 %."""
     from pmpmsph.kernels.neighbours import neighbour_lists
-    from pmpmsph.kernels.sph import sph_rates
-    from pmpmsph.kernels.sph_correction import correction_matrices
+    from pmpmsph.kernels.sph.rates import sph_rates
+    from pmpmsph.kernels.sph.correction import correction_matrices
 
     case = load_case_file(CASE)
     sim = Simulation(case, dist=Distributor(MPI.COMM_SELF))

@@ -1,7 +1,7 @@
 """Lid-driven cavity at Re = 100 in SPH (pmpmsph/bench/scenes.py `sph_cavity`): viscous
 fluid, no-slip dummy walls that carry the wall's velocity (the lid) and transmit shear, the
 Morris et al. (1997) laminar viscosity and the stress form with the walls' extrapolated
-viscous stress (kernels/sph_walls.py). Reference: Ghia, Ghia & Shin (1982), u on the
+viscous stress (kernels/sph/walls.py). Reference: Ghia, Ghia & Shin (1982), u on the
 vertical centre line; the four points the issue names (y = 0.2813, 0.4531 (the minimum),
 0.7344, 0.8516) within 3 % of the lid speed, at 30 x 30 particles, u averaged over the last
 3 s of 20 (the flow is steady from about 12 s).

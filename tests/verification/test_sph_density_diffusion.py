@@ -1,4 +1,4 @@
-"""delta-SPH density diffusion (Antuono et al. 2010; kernels/sph_density.py).
+"""delta-SPH density diffusion (Antuono et al. 2010; kernels/sph/density.py).
 
 1. The renormalised density gradient is exact for a linear density field on a lattice, at
    its edges too, and then the diffusion term vanishes (the property that keeps a
@@ -29,8 +29,8 @@ from mpi4py import MPI
 
 from pmpmsph import load_case_file
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph import sph_rates
-from pmpmsph.kernels.sph_density import density_gradient
+from pmpmsph.kernels.sph.rates import sph_rates
+from pmpmsph.kernels.sph.density import density_gradient
 from pmpmsph.parallel.distributor import Distributor
 from pmpmsph.simulation import Simulation
 

@@ -1,5 +1,5 @@
-"""SPH fluid options for free-surface and coupled scenes (kernels/sph_integrate.py,
-kernels/sph.py, physics/sph.py), each against its closed form:
+"""SPH fluid options for free-surface and coupled scenes (kernels/sph/integrate.py,
+kernels/sph/rates.py, physics/sph.py), each against its closed form:
 
 * `sph.hydrostatic = true`: a Tait column starts at rest in the hydrostatic state,
   rho = rho0 (1 + (gamma-1)/gamma rho0 g z/kappa)^(1/(gamma-1)) at depth z below its top;
@@ -16,7 +16,7 @@ import numpy as np
 from mpi4py import MPI
 
 from pmpmsph import load_case_file
-from pmpmsph.kernels.sph_integrate import advance
+from pmpmsph.kernels.sph.integrate import advance
 from pmpmsph.parallel.distributor import Distributor
 from pmpmsph.simulation import Simulation
 

@@ -1,4 +1,4 @@
-"""The hourglass control (`[sph] hourglass`, kernels/sph_hourglass.py) on the coupled scenes 9
+"""The hourglass control (`[sph] hourglass`, kernels/sph/hourglass.py) on the coupled scenes 9
 and 10 (tests/verification/test_coupled.py runs them without it). Scene 11, the case it was
 made for, is tests/verification/test_coupled_plate.py.
 

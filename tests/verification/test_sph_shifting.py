@@ -1,4 +1,4 @@
-"""Particle shifting of SPH fluids (kernels/sph_shifting.py; `[sph] shifting = A`).
+"""Particle shifting of SPH fluids (kernels/sph/shifting.py; `[sph] shifting = A`).
 
 1. The kernel: on a square lattice with one particle displaced, grad C points from it
    towards its nearer neighbour (the shift -D grad C moves it back); the surface eigenvalue
@@ -24,7 +24,7 @@ from mpi4py import MPI
 
 from pmpmsph import Scene
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph_shifting import SURFACE, shifting_state
+from pmpmsph.kernels.sph.shifting import SURFACE, shifting_state
 from pmpmsph.parallel.distributor import Distributor
 
 DP = 0.02

@@ -37,7 +37,7 @@ import pytest
 from mpi4py import MPI
 
 from pmpmsph import Scene
-from pmpmsph.kernels.sph_kernels import kernel_dwdr
+from pmpmsph.kernels.sph.kernel_functions import kernel_dwdr
 from pmpmsph.parallel.distributor import Distributor
 
 E, NU, RHO, LENGTH = 100.0, 0.3, 1.0, 10.0

@@ -1,5 +1,5 @@
 """Scenes 12 and 13 (BENCHMARKS.md): seed 004's square plate in simple shear, corrected-kernel
-SPH (pmpmsph.kernels.tlsph) advanced by the serial driver `tlsph_driver` (TVD-RK3).
+SPH (pmpmsph.kernels.sph.tlsph) advanced by the serial driver `tlsph_driver` (TVD-RK3).
 
 Main runs: the seed's combination -- kernel corrected in the current configuration for the
 force (eq. 5), F by eq. 8 with the reference-configuration correction -- with k_h = 1.4.

@@ -24,15 +24,15 @@ advanced over their own time offsets (0, dt, dt/2). dt = CFL h / max(c_p, max |v
 configuration; ``force="reference"`` is its total-Lagrangian form (reference kernel, first
 Piola-Kirchhoff stress), the exact adjoint of eq. 8. With eq. 8 the former is not
 energy-consistent and develops an edge instability that sets in earlier the finer the
-particles (pmpmsph/kernels/tlsph.py, module docstring); the latter is stable.
+particles (pmpmsph/kernels/sph/tlsph.py, module docstring); the latter is stable.
 """
 import time
 
 import numpy as np
 
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph_kernels import CUBIC
-from pmpmsph.kernels.tlsph import (current_volume, deformation_gradient, energies,
+from pmpmsph.kernels.sph.kernel_functions import CUBIC
+from pmpmsph.kernels.sph.tlsph import (current_volume, deformation_gradient, energies,
                                    first_piola, internal_force, kernel_correction,
                                    material_stress, update_F_exp, velocity_gradient)
 from pmpmsph.materials import material_from_table

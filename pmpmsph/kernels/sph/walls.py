@@ -2,12 +2,12 @@
 pressure extrapolated from the fluid with the hydrostatic correction, their density from the
 inverse Tait law, their viscous stress extrapolated likewise, and the ghost velocity used in
 the viscous terms (eq. 23, no-slip: 2 v_wall - v~, free slip: +v~). Part of the SPH kernels
-(`kernels.sph`)."""
+(`kernels.sph.rates`)."""
 import numpy as np
 
-from ..jit import njit
-from ..codes import WALL
-from .sph_kernels import kernel_w
+from ...jit import njit
+from ...codes import WALL
+from .kernel_functions import kernel_w
 
 
 @njit
@@ -82,7 +82,7 @@ def mirror_pressure(dim, kern, h, n_query, x, rho, sigma, mat, fluid, start, ind
     dummy wall (Adami et al. 2012, eq. 27, static body):
         p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf
     over the fluid rows f of other materials within the support (0 where there are none).
-    The mirror pair of `kernels.sph.sph_rates` then presses on the solid with p_a + p_w, the
+    The mirror pair of `kernels.sph.rates.sph_rates` then presses on the solid with p_a + p_w, the
     fluid's pressure at both ends, rather than with 2 p_a, the pressure of the fluid particle
     taken for the solid point's too: in a column at rest that counts the water a kernel's
     depth below the face, and a float rides high by a fraction of a spacing (docs/floats.md).

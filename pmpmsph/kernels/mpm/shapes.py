@@ -20,8 +20,8 @@ import math
 import numpy as np
 from numba.extending import overload
 
-from ..jit import njit
-from ..materials.tensor import cofactor3
+from ...jit import njit
+from ...materials.tensor import cofactor3
 
 LINEAR, GIMP, QUADRATIC, CUBIC, CPDI = 0, 1, 2, 3, 4
 SHAPE_CODES = {"linear": LINEAR, "gimp": GIMP, "quadratic": QUADRATIC, "cubic": CUBIC,

@@ -1,10 +1,10 @@
 """Monaghan's artificial stress against the tensile instability of SPH solids (Gray, Monaghan
 & Swift 2001): the per-particle stress R_a from the tensile principal stresses, which the
-pair loop of `kernels.sph.sph_rates` adds as eps f^n (R_a + R_b); with the 3x3 Jacobi
+pair loop of `kernels.sph.rates.sph_rates` adds as eps f^n (R_a + R_b); with the 3x3 Jacobi
 eigen-solver it needs."""
 import numpy as np
 
-from ..jit import njit
+from ...jit import njit
 
 
 @njit

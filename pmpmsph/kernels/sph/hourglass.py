@@ -1,6 +1,6 @@
 """Hourglass (zero-energy mode) control of updated-Lagrangian SPH solids (`[sph] hourglass`).
 
-With the corrected gradient of `sph_correction` (Bonet & Lok), the velocity gradient of a
+With the corrected gradient of `correction` (Bonet & Lok), the velocity gradient of a
 particle does not see a displacement that alternates in sign from particle to particle (on a
 regular lattice the pair terms of such a field cancel: an odd-even, zero-energy mode of the
 nodally integrated SPH solid, the one the tensile-instability and stress-point literature
@@ -56,10 +56,10 @@ kappa = 1, 2, 4 stable, kappa = 10 not.
 """
 import numpy as np
 
-from ..jit import njit
-from ..materials.tensor import block_inverse
-from ..codes import SPH
-from .sph_kernels import kernel_dwdr
+from ...jit import njit
+from ...materials.tensor import block_inverse
+from ...codes import SPH
+from .kernel_functions import kernel_dwdr
 
 
 @njit(inline="always")

@@ -21,9 +21,9 @@ at the scales of a lid-driven cavity (measured: 12 % off Ghia's centre line inst
 """
 import numpy as np
 
-from ..jit import njit
-from ..codes import MPM, SPH
-from .sph_kernels import pair_gradient
+from ...jit import njit
+from ...codes import MPM, SPH
+from .kernel_functions import pair_gradient
 
 #: lambda below this: a free-surface particle (Marrone et al. 2010 use 0.2 for the surface
 #: proper and 0.75 for its neighbourhood in their eigenvalue test; Sun et al. 2017 0.55)

@@ -1,6 +1,6 @@
 """delta-SPH density diffusion of weakly compressible fluids (Antuono et al. 2010): the
 renormalised density gradient that its diffusion term needs (`density_gradient`); the term
-itself is summed in `kernels.sph.sph_rates` with the continuity equation.
+itself is summed in `kernels.sph.rates.sph_rates` with the continuity equation.
 
 Antuono, Colagrossi, Marrone & Molteni (2010), Comput. Phys. Commun. 181, eqs. (4)-(6):
 
@@ -35,9 +35,9 @@ whichever end a half neighbour list puts first (the rank invariance of DESIGN.md
 """
 import numpy as np
 
-from ..jit import njit
-from ..codes import SPH
-from .sph_kernels import pair_gradient
+from ...jit import njit
+from ...codes import SPH
+from .kernel_functions import pair_gradient
 
 #: a row whose moment matrix has det M below this keeps the plain sum for its gradient: a
 #: particle with few or collinear neighbours (a splash), whose M cannot be inverted safely;

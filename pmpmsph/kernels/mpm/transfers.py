@@ -7,10 +7,10 @@ single-velocity-field MPM, one field per body for multi-field contact.
 """
 import numpy as np
 
-from ..jit import njit
-from ..materials.dispatch import compute_stress_tagged, wave_speed
-from ..materials.fluid import stress_tait_of_jm1
-from .deformation import advance
+from ...jit import njit
+from ...materials.dispatch import compute_stress_tagged, wave_speed
+from ...materials.fluid import stress_tait_of_jm1
+from ..deformation import advance
 from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 
@@ -283,7 +283,7 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
     (`material_tag`); `pic_tag` = (0,) when flip = 0 (PIC: the increments are not gathered
     and v_p is sum N v_new itself), () otherwise, also fixed at compile time.
     `Lp` (n, 3, 3), when given with `gdv = None`, is each particle's velocity gradient,
-    gathered already (`kernels.mpm_affine.g2p_affine`): the grid is not read.
+    gathered already (`kernels.mpm.affine.g2p_affine`): the grid is not read.
     """
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)

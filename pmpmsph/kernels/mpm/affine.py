@@ -17,14 +17,14 @@ its moving-least-squares approximation D^-1 N_I (x_I - x_p), so the internal for
 is -vol_p sigma_p D^-1 N_I (x_I - x_p), and the particle's velocity gradient is C_p itself
 (F <- (I + dt C_p) F): the force and the deformation use the same gradient.
 
-These kernels are the plain per-node loops (not sum-factorised like `kernels.mpm`): the
-transfer, not the speed, is what they are for. The deformation update is `kernels.mpm.g2p`'s,
-given the velocity gradient gathered here.
+These kernels are the plain per-node loops (not sum-factorised like `kernels.mpm.transfers`):
+the transfer, not the speed, is what they are for. The deformation update is
+`kernels.mpm.transfers.g2p`'s, given the velocity gradient gathered here.
 """
 import numpy as np
 
-from ..jit import njit
-from ..materials.tensor import block_inverse
+from ...jit import njit
+from ...materials.tensor import block_inverse
 from .shapes import CUBIC, LINEAR, QUADRATIC, cpdi_domain, local_layout, n_corners, stencil
 
 
@@ -75,7 +75,7 @@ def p2g_affine(dim_tag, kind_tag, mls, x, v, C, mass, vol, sigma, fext, lp, F, p
     """P2G with the affine momentum m_p C_p (x_I - x_p) (Jiang 2015 eq. 12).
 
     The force of node I is sum_p N_I f_p - vol_p sigma_p g_I with g_I = grad N_I (APIC) or
-    D^-1 N_I (x_I - x_p) (`mls`, Hu 2018 eq. 18). Arguments as `kernels.mpm.p2g`: `gforce`
+    D^-1 N_I (x_I - x_p) (`mls`, Hu 2018 eq. 18). Arguments as `kernels.mpm.transfers.p2g`: `gforce`
     None and `force_dt` = dt fold the force into the momentum (p + dt f).
     """
     dim, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
@@ -141,7 +141,7 @@ def g2p_affine(dim_tag, kind_tag, mls, x, v, C, lp, Fdom, pfield, gvel, origin, 
     """G2P of APIC / MLS-MPM: v_p = sum N_I v_I, C_p = B_p D_p^-1 (see the module),
     x_p += dt v_p. `Lout` (None, or n x 3 x 3) receives the velocity gradient the deformation
     is to use, evaluated before the move: sum v_I grad N_I^T (APIC) or C_p (`mls`);
-    `kernels.mpm.g2p` with `Lp = Lout` then updates F and the stress. Returns the index of
+    `kernels.mpm.transfers.g2p` with `Lp = Lout` then updates F and the stress. Returns the index of
     the first particle that left the box [lo, hi] (or -1).
     """
     dim, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,

@@ -1,13 +1,13 @@
 """Kernel gradient correction of updated-Lagrangian SPH (`[sph] correction = true`): the
-matrices B_a = (M_a^T)^-1 that `kernels.sph.sph_rates` applies to the kernel gradient
+matrices B_a = (M_a^T)^-1 that `kernels.sph.rates.sph_rates` applies to the kernel gradient
 (Bonet & Lok 1999; seed 004 §2.1 for the first-order completeness it restores).
 """
 import numpy as np
 
-from ..jit import njit
-from ..materials.tensor import cofactor3
-from ..codes import SPH, WALL
-from .sph_kernels import pair_gradient
+from ...jit import njit
+from ...materials.tensor import cofactor3
+from ...codes import SPH, WALL
+from .kernel_functions import pair_gradient
 
 
 @njit(inline="always")

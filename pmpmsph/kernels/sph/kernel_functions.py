@@ -10,7 +10,7 @@ x_a of W(|x_a - x_b|) is dW/dr * (x_a - x_b)/r (zero at r = 0).
 """
 import numpy as np
 
-from ..jit import njit
+from ...jit import njit
 
 CUBIC = 0
 WENDLAND_C2 = 1

@@ -3,26 +3,26 @@
 Each function loops over plain arrays; the stage (`pmpmsph.physics.sph`) owns the order.
 Rows [0, n_owned) are owned particles, the rest halo copies. `method` codes: 0 MPM,
 1 SPH, 2 SPH wall (dummy particle). Neighbour lists are half CSR lists (`start`, `index`;
-each pair once) from `kernels.neighbours`. The integrators are in `kernels.sph_integrate`.
+each pair once) from `kernels.neighbours`. The integrators are in `kernels.sph.integrate`.
 
 * `sph_rates`: continuity (seed 000, eq. 2.5), momentum with stress (eq. 2.6), the
   Monaghan artificial viscosity (eqs. 2.7-2.8), Monaghan's artificial stress against the
   tensile instability (Gray, Monaghan & Swift 2001), and the velocity gradient whose
   symmetric part is the strain rate of eq. 2.9 (difference form of eq. 2.4).
-* `wall_state` (kernels/sph_walls.py): dummy-particle walls (Adami, Hu & Adams 2012).
+* `wall_state` (kernels/sph/walls.py): dummy-particle walls (Adami, Hu & Adams 2012).
 * `sph_stress`: stress of owned SPH particles from their F (solids) or density (fluids).
-* `sound_speeds`, `pair_stress` and (kernels/sph_artificial_stress.py) `artificial_stress`:
+* `sound_speeds`, `pair_stress` and (kernels/sph/artificial_stress.py) `artificial_stress`:
   per-row inputs of the pair loop.
 """
 import numpy as np
 
-from ..jit import njit
-from ..codes import MPM, SPH, WALL
-from ..materials.codes import TAIT_FLUID
-from ..materials.dispatch import compute_stress, wave_speed
-from ..materials.fluid import stress_tait_of_jm1
-from ..materials.tensor import det3
-from .sph_kernels import kernel_dwdr, kernel_w
+from ...jit import njit
+from ...codes import MPM, SPH, WALL
+from ...materials.codes import TAIT_FLUID
+from ...materials.dispatch import compute_stress, wave_speed
+from ...materials.fluid import stress_tait_of_jm1
+from ...materials.tensor import det3
+from .kernel_functions import kernel_dwdr, kernel_w
 
 
 
@@ -162,7 +162,7 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     (e.g. water against an elastic MPM block or obstacle) the solid point stands for a
     mirror of the fluid: it carries the fluid's density at its volume V_b = m_b/rho_b (mass
     rho_a V_b) and the fluid pressure p_w,b extrapolated to it from its fluid neighbours
-    (`pw`, `kernels.sph_walls.mirror_pressure`: Adami et al. 2012 eq. 27, as a dummy wall),
+    (`pw`, `kernels.sph.walls.mirror_pressure`: Adami et al. 2012 eq. 27, as a dummy wall),
     and it counts twice in the fluid's continuity equation, as a wall does for the fluid in
     contact with it:
         drho_a/dt += 2 rho_a V_b (v_a - v_b) . grad_a W_ab,
@@ -210,7 +210,7 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     MPM neighbours too (see the module docstring of `physics.coupling`).
 
     With a non-empty `corr_tag` (`[sph] correction = true`) the kernel gradient is corrected
-    with the matrices B_a = (M_a^T)^-1 of `kernels.sph_correction` (Bonet & Lok 1999):
+    with the matrices B_a = (M_a^T)^-1 of `kernels.sph.correction` (Bonet & Lok 1999):
     with G_ab = B_a grad_a W_ab and G_ba = B_b grad_b W_ba = -B_b grad_a W_ab,
         L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) G_ab        (exact for linear v),
         drho_a/dt = sum_b m_b (v_a - v_b) . G_ab             (= -rho_a tr L_a),
@@ -225,14 +225,14 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     Kirsch field is 23 % short plain, 5 % corrected).
 
     With `dcoef` (delta h c0 per material, 0 where a material does not diffuse) and the
-    renormalised density gradients `gradrho` of `kernels.sph_density.density_gradient`, the
+    renormalised density gradients `gradrho` of `kernels.sph.density.density_gradient`, the
     continuity equation of a pair of SPH rows of one such material gains the delta-SPH
-    diffusion of Antuono et al. (2010), eq. (5) (see kernels/sph_density.py):
+    diffusion of Antuono et al. (2010), eq. (5) (see kernels/sph/density.py):
         drho_a += dcoef V_b psi_ab . grad_a W_ab,   drho_b -= dcoef V_a psi_ab . grad_a W_ab
     (psi_ba = psi_ab and grad_b W_ba = -grad_a W_ab). With `split` instead of `gradrho`,
     psi_ab is that of Fourtakas et al. (2019): 2 (rho_b - rho_a - rho^H_ba) (x_b - x_a) /
     |x_ab|^2, the hydrostatic density difference of the pair taken out (its form here:
-    kernels/sph_density.py), so no gradient pass is needed; it reads `cs` and `gravity`.
+    kernels/sph/density.py), so no gradient pass is needed; it reads `cs` and `gravity`.
 
     With `morris_mu` (the dynamic viscosity per material, 0 where a material's viscosity is
     not pairwise) a pair of a fluid row a and a row b of the same fluid, or a dummy wall b,
@@ -240,10 +240,10 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
         dv_a/dt += m_b (mu_a + mu_b) x_ab . grad_a W_ab / (rho_a rho_b (r^2 + 0.01 h^2)) v~_ab
     with v~_ab = v_a - v~_b, v~_b the wall's ghost velocity (Adami et al. 2012, eq. 23:
     2 v_wall - v_fluid extrapolated, so that the no-slip condition holds on the wall
-    surface, `kernels.sph_walls`); the reaction on b (fluid rows only) conserves momentum.
+    surface, `kernels.sph.walls`); the reaction on b (fluid rows only) conserves momentum.
     It discretises mu lap(v) with second-order accuracy on regular lattices, and near a wall
     it sees the wall's velocity through the ghost: the stress form's wall pairs carry the
-    wall's extrapolated viscous stress instead (`kernels.sph_walls.wall_state`)."""
+    wall's extrapolated viscous stress instead (`kernels.sph.walls.wall_state`)."""
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     corr = len(corr_tag) > 0
@@ -259,7 +259,7 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     if gradrho is None:  # (Fourtakas' splitting needs no gradients)
         gradrho = np.zeros((0, 3))
     # Fourtakas' splitting: drho/dp = 1/c^2 of each row, so rho^H_ba = -(q_a + q_b)/2 g . x_ab
-    # with q = rho/c^2 (kernels/sph_density.py), a load per pair instead of a division
+    # with q = rho/c^2 (kernels/sph/density.py), a load per pair instead of a division
     rho_c2 = np.zeros(x.shape[0] if split else 0)
     for a in range(rho_c2.shape[0]):
         rho_c2[a] = rho[a] / (cs[a] * cs[a]) if cs[a] > 0.0 else 0.0

@@ -80,10 +80,10 @@ reference volume).
 """
 import numpy as np
 
-from ..jit import njit
-from ..materials.dispatch import compute_stress, strain_energy
-from ..materials.tensor import block_inverse, cofactor3, det3
-from .sph_kernels import kernel_dwdr, kernel_w
+from ...jit import njit
+from ...materials.dispatch import compute_stress, strain_energy
+from ...materials.tensor import block_inverse, cofactor3, det3
+from .kernel_functions import kernel_dwdr, kernel_w
 
 __all__ = ["kernel_correction", "velocity_gradient", "deformation_gradient", "internal_force",
            "first_piola", "expm3", "update_F_exp", "material_stress", "current_volume", "energies"]

@@ -5,8 +5,8 @@ shared by Euler, predictor-corrector and TVD-RK3 (`advance`), the velocity-Verle
 """
 import numpy as np
 
-from ..codes import SPH
-from ..jit import njit
+from ...codes import SPH
+from ...jit import njit
 
 
 @njit

@@ -10,7 +10,7 @@ correction momentum-conserving. The FLIP increments dv change by the same amount
 """
 import numpy as np
 
-from ..jit import njit
+from ...jit import njit
 
 
 @njit
