@@ -4,7 +4,7 @@ import numpy as np
 from .codes import METHOD_CODES
 from .errors import ConfigError
 from .particles import F_FIELD, J_FIELD, FieldSpec, ParticleSet
-from .physics.coupling import Coupling
+from .physics.coupling import coupling_fields
 from .physics.loads import PrescribedVelocity, TractionLoads, _in_region
 from .physics.mpm import MPMStage
 from .physics.sph import SPHStage
@@ -98,10 +98,8 @@ def build_particles(case, keep=None):
             ps.declare(spec)
         if case.sph.formulation == "total":
             ps.copy_to_halo("vol0")
-    if case.coupled:
-
-        for spec in Coupling.fields(case):
-            ps.declare(spec)
+    for spec in coupling_fields(case):
+        ps.declare(spec)
     mats = list(case.materials.values())
     mat_names = list(case.materials)
     state_size = max(m.state_size for m in mats)

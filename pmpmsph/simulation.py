@@ -23,6 +23,7 @@ from .parallel.distributor import Distributor
 from .parallel.balance import LoadBalancer
 from .parallel.rebalancing import Rebalancing
 from .parallel.migration import MigrationSchedule, migrate
+from .physics.coupling import interface_for
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
 from .timing import Timers
@@ -123,11 +124,10 @@ class Simulation(Output, Restart, Rebalancing):
         self.sph = (sph_stage_class(case)(case, self.particles, self.materials,
                                           self.decomposition, self.dist, self.timers)
                     if case.has_sph else None)
-        self.coupling = None
-        if case.coupled:
-            from .physics.coupling import Coupling
-
-            self.coupling = Coupling(case, self.particles, self.mpm, self.sph)
+        # the coupling's hooks in the step (`Uncoupled`: none; physics/coupling.py)
+        self.coupling = interface_for(case, self.particles, self.mpm, self.sph, self.timers)
+        if self.mpm is not None:
+            self.mpm.attach(self.coupling)
 
     def _decompose(self, case):
         """Slabs of the grid; a pure-SPH scene cuts its [domain] box on a lattice of cells of
@@ -251,26 +251,20 @@ class Simulation(Output, Restart, Rebalancing):
         if self.loads is not None:
             self.loads.update(self.time)
         bad = -1
-        if self.coupling is not None:
-            with self.timers.phase("coupling"):
-                self.coupling.prepare()
-            self.coupling.before_mpm(self.dt)
+        self.coupling.prepare()
+        self.coupling.before_mpm(self.dt)
         fused = None  # this rank's CFL signal speed from G2P, when valid for the new state
         if self.mpm is not None:
             bad = self.mpm.step(self.dt, self.time)
             if (self.mpm.signal is not None and self.sph is None
                     and self.prescribed is None and self.case.time.cfl is not None):
                 fused = self.mpm.signal
-        if self.coupling is not None:
-            self.coupling.after_mpm()
+        self.coupling.after_mpm()
         if self.sph is not None:
-            kicked = self.coupling is not None and self.coupling.conservative
-            bad_sph = (self.sph.step(self.dt, self.time, kicked=True) if kicked
-                       else self.sph.step(self.dt, self.time))
+            bad_sph = self.coupling.sph_step(self.sph, self.dt, self.time)
             bad = bad if bad >= 0 else bad_sph
             self.particles.drop_halo()
-            if kicked:
-                self.coupling.after_sph(self.dt)
+        self.coupling.after_sph(self.dt)
         if self.prescribed is not None:
             self.prescribed.apply(self.time, self.dt, x_before)
         dec = self.decomposition
@@ -291,7 +285,7 @@ class Simulation(Output, Restart, Rebalancing):
                 self.migration.migrated()
             if self.sph is not None and (sent or received):
                 self.sph.invalidate()
-        if (self.mpm is not None and self.coupling is None  # coupling keeps its own order
+        if (self.mpm is not None and not self.coupling.keeps_row_order
                 and self.step_count % SORT_EVERY == 0
                 and self.particles.n_owned >= SORT_MIN_PARTICLES):
             with self.timers.phase("sort"):

@@ -35,16 +35,11 @@ def _dry_step(sim):
         if sim.mpm is not None:
             with sim.mpm.detached():
                 sim.mpm.step(1e-30, 0.0)
-                if sim.mpm.conservative:  # (its rows are empty in the dry step)
-                    sim.mpm._grid_force_kick(1e-30)
             g = sim.mpm.grid
             cell_keys(p["x"], g.origin, g.inv_dx, g.strides)
         if sim.sph is not None:
             sim.sph.warm_up()
-        if sim.coupling is not None:
-            with sim.mpm.detached():
-                sim.coupling.prepare()
-            sim.mpm.n_p2g = sim.mpm.n_g2p = sim.mpm.n_stress = None
+        sim.coupling.warm_up(sim)
         mtypes, mparams = sim.materials
         mstate = p["mstate"] if "mstate" in p else np.zeros((0, 0))
         particle_sums(sim.dim, p["x"], p["v"], p["mass"], p["vol0"], p.deformation(),

@@ -55,6 +55,7 @@ import numpy as np
 
 from ..codes import METHOD_CODES, MPM, SPH
 from ..jit import njit
+from ..materials.codes import TAIT_FLUID
 from ..scene.regions import region_methods
 from .scratch import rows_at_least
 from .sph_solid import solid_force
@@ -138,8 +139,61 @@ def is_sorted(key, n):
     return True
 
 
-class Coupling:
-    """Keeps the owned rows ordered for the coupled step and hands particles over."""
+class Uncoupled:
+    """A scene of one method: every hook of the coupled step does nothing. `Simulation.step`
+    and the MPM and SPH stages call the hooks of whatever interface the scene has (this one,
+    `SeedInterface` or `ConservativeInterface`), never asking which it is."""
+
+    name = "none"
+    #: whether the interface keeps the owned rows in its own order (no sort by cell)
+    keeps_row_order = False
+    #: whether the MPM stage may fold dt f into the P2G momentum (`MPMStage.fold_force`)
+    lets_mpm_fold_forces = True
+    handed_over = 0
+    reorders = 0
+
+    @staticmethod
+    def fields(case):
+        return []
+
+    def prepare(self):
+        """Before the step: order and classify the rows (coupled scenes)."""
+
+    def before_mpm(self, dt):
+        """After `prepare`, before the MPM stage."""
+
+    def after_mpm(self):
+        """After the MPM stage, before the SPH stage."""
+
+    def sph_step(self, sph, dt, time):
+        """The SPH stage's step; returns a failed row or -1."""
+        return sph.step(dt, time)
+
+    def after_sph(self, dt):
+        """After the SPH stage."""
+
+    def p2g_parts(self, ng, ns, n, with_force):
+        """Row ranges of P2G as (lo, hi, scatter the stress, scatter the forces): rows
+        [0, ns) with their stress, [ns, n) (SPH solids in contact, physics/sph_solid.py,
+        whose stress is in their SPH force `fext`) without; ng is where the rows that G2P
+        updates end."""
+        if ns < n:
+            return ((0, ns, True, with_force), (ns, n, False, with_force))
+        return ((0, n, True, with_force),)
+
+    def after_grid_forces(self, mpm, dt):
+        """In the MPM step, once the nodal forces are summed (ghosts included)."""
+
+    def warm_up(self, sim):
+        """Compile what the hooks run, on the empty rows of `warmup._dry_step`."""
+
+
+class SeedInterface(Uncoupled):
+    """Seed 000 §4's interface: keeps the owned rows ordered for the coupled step, hands
+    particles over, and lets every P2G row scatter its stress (module docstring)."""
+
+    name = "seed"
+    keeps_row_order = True
 
     @staticmethod
     def fields(case):
@@ -150,21 +204,19 @@ class Coupling:
             out.append(FieldSpec("fcpl", ("dim",)))
         return out
 
-    def __init__(self, case, particles, mpm, sph):
+    def __init__(self, case, particles, mpm, sph, timers):
         self.case = case
         self.p = particles
         self.mpm = mpm
         self.sph = sph
+        self.timers = timers
         self.dim_tag = (0,) * case.dim
         self.handover = case.coupling.handover
-        self.conservative = case.coupling.interface == "conservative"
         self.key = np.zeros(0, np.int8)
         self.loads = bool(case.loads)
         names = list(case.materials)
         self.mpm_materials = sorted({names.index(b.material) for b in case.bodies
                                      if b.method == "mpm" or case.regions})
-        from ..materials.codes import TAIT_FLUID
-
         fluid = np.array([m.type_code == TAIT_FLUID for m in case.materials.values()])
         # per MPM material: the materials whose SPH rows join its P2G, and how
         self._joins = []
@@ -192,6 +244,10 @@ class Coupling:
     def prepare(self):
         """Order rows MPM | transition SPH | SPH solids in contact | rest; tell the MPM stage
         its three prefixes."""
+        with self.timers.phase("coupling"):
+            self._prepare()
+
+    def _prepare(self):
         p = self.p
         n = p.n_owned
         p.drop_halo()
@@ -242,28 +298,6 @@ class Coupling:
         n = self.mpm.n_g2p
         p["rho"][:n] = p["mass"][:n] / p["vol"][:n]
 
-    def before_mpm(self, dt):
-        """Conservative interface: the first half kick of the Verlet step, for the SPH rows
-        (their rates) and the MPM rows (the reactions `fcpl` of their SPH pairs), before
-        the MPM step, so that its P2G carries every particle's momentum at the same stage
-        (module docstring)."""
-        if not self.conservative:
-            return
-        self.after_mpm()  # (the first SPH evaluation needs rho of the MPM rows)
-        self.sph.kick(dt)
-        self._kick_mpm(dt)
-
-    def after_sph(self, dt):
-        """Conservative interface: the MPM rows' second half kick with the reactions of
-        the step's last SPH evaluation (at the new state), as the SPH rows get theirs."""
-        if self.conservative:
-            self._kick_mpm(dt)
-
-    def _kick_mpm(self, dt):
-        p = self.p
-        m = self.mpm.n_g2p
-        p["v"][:m] += (0.5 * dt) * p["fcpl"][:m] / p["mass"][:m, None]
-
     def _hand_over(self):
         """Relabel particles whose method region changed (walls never change)."""
         p = self.p
@@ -280,3 +314,72 @@ class Coupling:
             self.handed_over += len(change)
             if self.sph is not None:
                 self.sph.invalidate()
+
+    def warm_up(self, sim):
+        with self.mpm.detached():
+            self._prepare()
+        self.mpm.n_p2g = self.mpm.n_g2p = self.mpm.n_stress = None
+
+
+class ConservativeInterface(SeedInterface):
+    """Every particle's stress acts through the discretisation of its own strain rate
+    (module docstring): the transition SPH rows scatter no stress into P2G and take their
+    share of the nodal forces afterwards; the SPH pair reactions on the MPM rows (`fcpl`)
+    and the SPH rates are given as the two half kicks of one Verlet step."""
+
+    name = "conservative"
+    # (the nodal forces are needed apart from the momentum: `after_grid_forces`)
+    lets_mpm_fold_forces = False
+
+    def before_mpm(self, dt):
+        """The first half kick of the Verlet step, for the SPH rows (their rates) and the
+        MPM rows (the reactions `fcpl` of their SPH pairs), before the MPM step, so that its
+        P2G carries every particle's momentum at the same stage."""
+        self.after_mpm()  # (the first SPH evaluation needs rho of the MPM rows)
+        self.sph.kick(dt)
+        self._kick_mpm(dt)
+
+    def sph_step(self, sph, dt, time):
+        return sph.step(dt, time, kicked=True)
+
+    def after_sph(self, dt):
+        """The MPM rows' second half kick with the reactions of the step's last SPH
+        evaluation (at the new state), as the SPH rows get theirs."""
+        self._kick_mpm(dt)
+
+    def _kick_mpm(self, dt):
+        p = self.p
+        m = self.mpm.n_g2p
+        p["v"][:m] += (0.5 * dt) * p["fcpl"][:m] / p["mass"][:m, None]
+
+    def p2g_parts(self, ng, ns, n, with_force):
+        """MPM rows with their stress; transition SPH rows with neither stress nor force
+        (they take the grid force afterwards, `after_grid_forces`); SPH solids in contact."""
+        return ((0, ng, True, with_force), (ng, ns, False, False), (ns, n, False, with_force))
+
+    def after_grid_forces(self, mpm, dt):
+        """The transition SPH rows take their share of the nodal forces
+        (`kernels.coupling.grid_force_kick`)."""
+        if mpm.n_p2g > mpm.n_g2p:
+            mpm.grid_force_kick(dt)
+
+    def warm_up(self, sim):
+        with sim.mpm.detached():
+            sim.mpm.grid_force_kick(1e-30)  # (its rows are empty in the dry step)
+        super().warm_up(sim)
+
+
+#: the interfaces by `[coupling] interface`
+INTERFACES = {"seed": SeedInterface, "conservative": ConservativeInterface}
+
+
+def coupling_fields(case):
+    """The fields the scene's interface needs (none without coupling)."""
+    return SeedInterface.fields(case) if case.coupled else []
+
+
+def interface_for(case, particles, mpm, sph, timers):
+    """The scene's interface: `Uncoupled` for one method, else `[coupling] interface`'s."""
+    if not case.coupled:
+        return Uncoupled()
+    return INTERFACES[case.coupling.interface](case, particles, mpm, sph, timers)

@@ -26,6 +26,7 @@ from ..kernels.mpm.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
 from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
+from .coupling import Uncoupled
 from .grid import Grid
 from .scratch import rows_at_least
 from ..parallel.decomposition import wrap_axis
@@ -67,14 +68,13 @@ class MPMStage:
         self.pic_tag = (0,) if self.flip == 0.0 else ()  # PIC, for `kernels.mpm.transfers.g2p`
         # PIC-USL without damping needs only the updated nodal velocity, so P2G scatters
         # p + dt f into the momentum (one scatter instead of two, as Taichi's mpm88 does)
-        # (the conservative coupling needs the nodal forces apart: not folded)
-        self.conservative = case.coupled and case.coupling.interface == "conservative"
+        # (an interface that needs the nodal forces apart forbids it: `attach`)
         self.fold_force = (self.transfer == "usl" and (self.flip == 0.0 or self.affine)
-                           and self.damping == 0.0 and not self.multi and not self.conservative)
+                           and self.damping == 0.0 and not self.multi)
+        self.interface = Uncoupled()  # the coupling's hooks in the step (`attach`)
         # rows [0, n_p2g) take part in P2G and [0, n_g2p) are updated by G2P; None: all
-        # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone).
-        # With the conservative coupling the rows [n_g2p, n_p2g) (transition SPH) scatter
-        # mass and momentum but no stress, and take the grid force (`grid_force_kick`)
+        # owned rows (a coupled scene puts MPM rows first, then the SPH transition zone;
+        # which of them scatter their stress is the interface's `p2g_parts`)
         self.n_p2g = self.n_g2p = self.n_stress = None
         self.signal = None  # max (c + |v|) after the last step, from G2P (see `step`)
         self._dvc = np.zeros((0, 0, 0))  # scratch: `_contact_change`, `_zero_stress`
@@ -206,16 +206,8 @@ class MPMStage:
         ns = min(self.n_stress, n)
         ng = min(self.n_g2p, ns)
         F = self._domain_F(n)
-        # (rows, scatter their stress, scatter forces): MPM rows; transition SPH rows (no
-        # stress and no force with the conservative coupling, which gives them the grid
-        # force afterwards, `grid_force_kick`); SPH solids in contact (their stress is in
-        # their SPH force `fext`, physics/sph_solid.py)
-        if self.conservative:
-            parts = ((0, ng, True, with_force), (ng, ns, False, False), (ns, n, False, with_force))
-        elif ns < n:
-            parts = ((0, ns, True, with_force), (ns, n, False, with_force))
-        else:  # every row scatters its stress (all but the coupled scenes above)
-            parts = ((0, n, True, with_force),)
+        # (rows, scatter their stress, scatter forces), as the interface has them
+        parts = self.interface.p2g_parts(ng, ns, n, with_force)
         with t.phase("p2g"):
             if self._trim:
                 self._span = g.work_range(p["x"], n, self._margin, *self._keep)
@@ -282,8 +274,8 @@ class MPMStage:
                                  p["lp"] if "lp" in p else None, p["body"], dvc, g.node0,
                                  g.offset, g.inv_dx, g.strides)
         # (the ghosts hold the full nodal mass and force too, from `GridHalo.sum`)
-        if with_force and self.conservative and self.n_p2g > self.n_g2p:
-            self._grid_force_kick(dt)
+        if with_force:
+            self.interface.after_grid_forces(self, dt)
 
     def _gradients(self, n):
         """A reused (n, 3, 3) array for the velocity gradients of an affine G2P."""
@@ -301,9 +293,14 @@ class MPMStage:
         self._zeros = rows_at_least(self._zeros, n)
         return self._zeros[:n]
 
-    def _grid_force_kick(self, dt):
-        """The transition SPH rows take their share of the nodal forces (conservative
-        coupling; `kernels.coupling.grid_force_kick`)."""
+    def attach(self, interface):
+        """Take the coupling interface's hooks (physics/coupling.py)."""
+        self.interface = interface
+        self.fold_force = self.fold_force and interface.lets_mpm_fold_forces
+
+    def grid_force_kick(self, dt):
+        """The rows [n_g2p, n_p2g) take their share of the nodal forces (the conservative
+        interface's transition SPH rows; `kernels.coupling.grid_force_kick`)."""
         g, p = self.grid, self.p
         a, b = self.n_g2p, self.n_p2g
         _, lp, _, pfield, _, _ = self._optional(b)

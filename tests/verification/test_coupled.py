@@ -151,7 +151,7 @@ def test_scene10_pure_mpm_for_comparison():
     del data["regions"], data["sph"]
     sim = Simulation(case_from_dict(apply_overrides(data, sets), name="pure_mpm", text=text),
                      dist=Distributor(MPI.COMM_SELF))
-    assert sim.sph is None and sim.coupling is None
+    assert sim.sph is None and sim.coupling.name == "none"
     sim.run()
     p = sim.particles
     x, s = p["x"], p["sigma"] / 1e6
