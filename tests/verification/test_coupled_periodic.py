@@ -8,8 +8,13 @@ transition zone fold across the seam, physics/coupling.py).
    no free surface) settles where the water under it carries its weight: the drop of the
    layer against the Tait column's (`piston_equilibrium`, from the water's seeded state).
    Measured, mean bottom of the layer over t = 0.5-2 s, drop 1.20 mm exact:
-       spacing 0.01: 0.198745 against 0.198803 (drop 4.9 % long),
-       spacing 0.005: 0.198764 against 0.198803 (3.2 % long).
+       spacing 0.01: drop 6.4 % long, spacing 0.005: 3.6 % long (first order: 0.077 and
+       0.043 mm), with the solid points carrying the water pressure extrapolated to them
+       (kernels/sph/walls.py mirror_pressure; 2026-11-25). With the water particle's own
+       pressure at both ends before that: 0.198745 against 0.198803 (4.9 % long) and
+       0.198764 (3.2 %). The bound was 6 % then and is 7 % now: the extrapolation lowers the
+       layer by 0.015 mm (0.0015 spacings) at spacing 0.01 while it halves the floats'
+       offset (docs/floats.md).
    The layer bobs about it with an amplitude of about 1 mm that the viscosity damps slowly.
 2. Moving at U = 1 along the period (floor too), every particle crosses the seam; the scene
    is uniform along x, so every row must stay uniform: the seam is invisible (measured
@@ -65,7 +70,7 @@ def test_piston_settles_at_the_tait_equilibrium():
     print(f"layer bottom {settled:.6f} against {exact:.6f}: drop {drop * 1e3:.3f} mm, exact "
           f"{drop_exact * 1e3:.3f} mm ({drop / drop_exact - 1:+.3f})")
     assert drop_exact > 1e-3
-    assert abs(drop / drop_exact - 1.0) < 0.06
+    assert abs(drop / drop_exact - 1.0) < 0.07
     assert np.all(np.isfinite(_owned(sim, "v")))
 
 
