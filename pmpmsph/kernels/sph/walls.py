@@ -11,6 +11,20 @@ from .kernel_functions import kernel_w
 
 
 @njit
+def extrapolated_pressure(dim, kern, h, x, rho, sigma, gravity, w, f):
+    """One fluid row f's part of Adami et al.'s (2012) eq. 27 at row w: (W_wf, p_f,
+    p_f + rho_f g . (x_w - x_f)), the fluid's pressure carried hydrostatically to w."""
+    r2 = 0.0
+    gr = 0.0
+    for d in range(dim):
+        dx = x[w, d] - x[f, d]
+        r2 += dx * dx
+        gr += gravity[d] * dx
+    pf = -(sigma[f, 0, 0] + sigma[f, 1, 1] + sigma[f, 2, 2]) / 3.0
+    return kernel_w(kern, dim, np.sqrt(r2), h), pf, pf + rho[f] * gr
+
+
+@njit
 def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, index,
                mtypes, mparams, gravity, no_slip, vg):
     """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
@@ -38,17 +52,10 @@ def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, inde
             if wb and b >= n_query:
                 continue  # a halo wall: its owner sums it
             w, f = (a, b) if wa else (b, a)
-            r2 = 0.0
-            gr = 0.0
-            for d in range(dim):
-                dx = x[w, d] - x[f, d]
-                r2 += dx * dx
-                gr += gravity[d] * dx
-            W = kernel_w(kern, dim, np.sqrt(r2), h)
+            W, pf, pw_f = extrapolated_pressure(dim, kern, h, x, rho, sigma, gravity, w, f)
             if W == 0.0:
                 continue
-            pf = -(sigma[f, 0, 0] + sigma[f, 1, 1] + sigma[f, 2, 2]) / 3.0
-            ps[w] += (pf + rho[f] * gr) * W
+            ps[w] += pw_f * W
             sw[w] += W
             for d in range(dim):
                 vt[w, d] += v[f, d] * W
@@ -104,17 +111,8 @@ def mirror_pressure(dim, kern, h, n_query, x, rho, sigma, mat, fluid, start, ind
                 continue
             if w >= n_query:
                 continue  # a halo row: its owner sums it
-            r2 = 0.0
-            gr = 0.0
-            for d in range(dim):
-                dx = x[w, d] - x[f, d]
-                r2 += dx * dx
-                gr += gravity[d] * dx
-            W = kernel_w(kern, dim, np.sqrt(r2), h)
-            if W == 0.0:
-                continue
-            pf = -(sigma[f, 0, 0] + sigma[f, 1, 1] + sigma[f, 2, 2]) / 3.0
-            pw[w] += (pf + rho[f] * gr) * W
+            W, _, pw_f = extrapolated_pressure(dim, kern, h, x, rho, sigma, gravity, w, f)
+            pw[w] += pw_f * W
             sw[w] += W
     for w in range(n_query):
         if sw[w] > 0.0:
