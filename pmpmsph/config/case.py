@@ -267,7 +267,7 @@ class Case:
         CPDI, whose domains F shapes."""
         if self.mpm.deformation == "F" or self.has_sph or self.mpm.shape == "cpdi":
             return False
-        return all(self.materials[b.material].model == "tait_fluid" for b in self.bodies)
+        return all(self.materials[b.material].fluid for b in self.bodies)
 
     def material_names(self):
         return list(self.materials)

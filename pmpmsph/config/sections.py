@@ -8,7 +8,6 @@ import contextvars
 import math
 
 from ..errors import ConfigError
-from ..materials.codes import TAIT_FLUID
 from ..scene.geometry import Box, Disc, Polygon
 from ..scene.mesh import MeshGeometry, mesh_geometry
 from .case import (METHODS, SPH_FORMULATIONS, SPH_INTEGRATORS, SPH_KERNELS, BodySpec,
@@ -180,8 +179,8 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
     visc.finish()
     walls = t.string("walls", "no_slip", choices=("no_slip", "slip"))
     for i, b in enumerate(bodies):
-        if b.wall and materials[b.material].type_code != TAIT_FLUID:
-            raise ConfigError(f"bodies[{i}].material", "wall particles take a tait_fluid "
+        if b.wall and not materials[b.material].fluid:
+            raise ConfigError(f"bodies[{i}].material", "wall particles take a fluid "
                               "material (their density follows the extrapolated pressure)")
     spec = SPHSpec(
         kernel=kernel, h=h, spacing=spacing,
@@ -224,7 +223,7 @@ def _check_mpm_hydrostatic(bodies, materials, gravity):
         raise ConfigError("mpm.hydrostatic", "a hydrostatic start needs gravity (the case "
                           "has none)")
     if not any(b.method == "mpm" and not b.wall
-               and materials[b.material].type_code == TAIT_FLUID
+               and materials[b.material].fluid
                for b in bodies):
         raise ConfigError("mpm.hydrostatic", "no MPM body of a tait fluid to start "
                           "hydrostatic (it sets the MPM fluids' initial density and pressure)")

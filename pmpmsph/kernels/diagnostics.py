@@ -10,43 +10,10 @@ energy directly: the runtime switch over all six models, inlined in the particle
 more than the energy itself. The sums are the same, in the same order, bit for bit.
 """
 import numpy as np
-from numba.extending import overload
 
 from ..jit import njit
 from .deformation import deformation_matrix, jacobian
-from ..materials.dispatch import strain_energy, wave_speed
-from ..materials.elastic import (energy_hartmann_neff, energy_linear_elastic,
-                                 energy_neo_hookean, energy_stvk)
-from ..materials.fluid import energy_tait_fluid
-from ..materials.maxwell import energy_maxwell
-from ..materials.codes import (HARTMANN_NEFF, LINEAR_ELASTIC, MAXWELL, NEO_HOOKEAN, STVK,
-                               TAIT_FLUID)
-
-_ENERGY_BY_CODE = {NEO_HOOKEAN: energy_neo_hookean, TAIT_FLUID: energy_tait_fluid,
-                   LINEAR_ELASTIC: energy_linear_elastic, STVK: energy_stvk,
-                   HARTMANN_NEFF: energy_hartmann_neff, MAXWELL: energy_maxwell}
-
-
-def strain_energy_tagged(mtag, mtype, F, state, par):
-    """`strain_energy` with the type fixed at compile time when `mtag` is not empty (see
-    `materials.dispatch.compute_stress_tagged`). This body runs under NUMBA_DISABLE_JIT=1."""
-    if len(mtag) == 0:
-        return strain_energy(mtype, F, state, par)
-    return _ENERGY_BY_CODE[len(mtag) - 1](F, state, par)
-
-
-@overload(strain_energy_tagged, inline="always")
-def _strain_energy_tagged_typed(mtag, mtype, F, state, par):
-    count = len(mtag.types)
-    if count == 0:
-        def switch(mtag, mtype, F, state, par):
-            return strain_energy(mtype, F, state, par)
-        return switch
-    model = _ENERGY_BY_CODE[count - 1]
-
-    def fixed(mtag, mtype, F, state, par):
-        return model(F, state, par)
-    return fixed
+from ..materials.dispatch import strain_energy_tagged, wave_speed
 
 
 @njit

@@ -12,13 +12,23 @@ dpsi/dJ = -p and psi(1) = 0:
     psi(J) = kappa [ (J^(1-gamma) - 1)/(gamma - 1) + J - 1 ]   (gamma = 1: kappa [J - 1 - ln J]).
 
 The viscous part stores no energy.  In 2D (plane strain) the deviator still uses tr(d)/3.
+Its wave speed is the sound speed sqrt(dp/drho) = sqrt(kappa gamma/rho0 (rho/rho0)^(gamma-1)),
+rho/rho0 = 1/J (seed 003, eq. 50).
 """
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
 import numpy as np
 
+from ..errors import ConfigError
 from ..jit import njit
+from .base import Material, check_dim, finite_numbers, positive
+from .registry import Model, register
 from .tensor import det_minus_one, store_sym
 
 STATE_SIZE = 0
+TAIT_FLUID = 5
 
 
 @njit(inline="always")
@@ -79,3 +89,68 @@ def energy_tait_fluid(F, state, par):
     else:
         term = np.expm1(-g1 * lnJ) / g1
     return kappa * (term + jm1)
+
+
+@njit(inline="always")
+def wave_speed_tait_fluid(par, J):
+    """c^2 = kappa gamma / rho0 J^(1 - gamma) (module doc); the usual exponents by
+    multiplication (this runs per particle per step for the CFL time step; exp/log cost
+    most of that pass)."""
+    rho0 = par[2]
+    gamma = par[1]
+    if gamma == 7.0:
+        r = 1.0 / J
+        r2 = r * r
+        return np.sqrt(par[0] * 7.0 / rho0 * (r2 * r2 * r2))
+    if gamma == 1.0:
+        return np.sqrt(par[0] / rho0)
+    return np.sqrt(par[0] * gamma / rho0 * np.exp((1.0 - gamma) * np.log(J)))
+
+
+@dataclass(frozen=True)
+class TaitFluid(Material):
+    """Compressible Newtonian fluid with the Tait equation of state (seed 003, eqs. 48-50):
+    sigma = 2 mu [d - tr(d)/3 I] - p I, p = kappa [(rho/rho0)^gamma - 1].
+    Parameters ``[kappa, gamma, rho0, mu, 0, 0, 0, 0]`` (mu: dynamic shear viscosity)."""
+
+    rho: float
+    kappa: float
+    gamma: float = 7.0
+    mu: float = 0.0
+    type_code: ClassVar[int] = TAIT_FLUID
+    model: ClassVar[str] = "tait_fluid"
+    aliases: ClassVar[tuple] = ("tait", "newtonian_fluid")
+    required: ClassVar[tuple] = ("rho", "kappa")
+    optional: ClassVar[tuple] = ("gamma", "mu")
+    stiffness: ClassVar[str] = "kappa"
+    fluid: ClassVar[bool] = True
+
+    def __post_init__(self):
+        finite_numbers(self)
+        positive("rho", self.rho, "density")
+        positive("kappa", self.kappa, "bulk modulus")
+        positive("gamma", self.gamma, "Tait exponent")
+        if not self.mu >= 0:
+            raise ConfigError("mu", f"viscosity must be >= 0, got {self.mu!r}")
+
+    def params(self, dim):
+        check_dim(dim)
+        return self._vector(self.kappa, self.gamma, self.rho, self.mu)
+
+    @property
+    def viscosity(self):
+        """The dynamic viscosity (the trait every fluid has)."""
+        return self.mu
+
+    def sound_speed(self, dim=3):
+        """sqrt(dp/drho) at rho = rho0: sqrt(kappa gamma / rho0)."""
+        return math.sqrt(self.kappa * self.gamma / self.rho)
+
+    def max_stable_viscous_dt(self, h):
+        """Explicit viscous diffusion limit dt <= 0.125 h^2 rho0 / mu (inf if mu = 0)."""
+        if self.mu == 0:
+            return math.inf
+        return 0.125 * h * h * self.rho / self.mu
+
+
+register(Model(TaitFluid, stress_tait_fluid, energy_tait_fluid, wave_speed_tait_fluid))

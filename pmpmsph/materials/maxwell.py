@@ -22,13 +22,20 @@ One call of `stress_maxwell` with the updated F does:
 
 For dt = 0 (or eta -> infinity) a unimodular C_i is left unchanged.
 """
+from dataclasses import dataclass
+from typing import ClassVar
+
 import numpy as np
 
 from ..jit import njit
+from .base import ShearBulk, check_dim, positive
+from .elastic import wave_speed_hartmann_neff
+from .registry import Model, register
 from .tensor import (det3, hartmann_neff_cauchy, hartmann_neff_volumetric_energy,
                      inv_cbrt_sq, push_forward_sym, right_cauchy_green, sym_det, sym_inv)
 
 STATE_SIZE = 6
+MAXWELL = 4
 
 
 @njit(inline="always")
@@ -82,3 +89,35 @@ def energy_maxwell(F, state, par):
           + 2.0 * (cxy * ixy + cyz * iyz + cxz * ixz))
     return (0.5 * mu * (inv_cbrt_sq(J) * tr - 3.0)
             + hartmann_neff_volumetric_energy(np.log(J), k))
+
+
+@dataclass(frozen=True)
+class Maxwell(ShearBulk):
+    """Finite-strain Maxwell body (Simo-Miehe; seed 004, eqs. 13-17) with the Hartmann-Neff
+    potential.  Parameters ``[mu, k, rho0, eta, 0, 0, 0, 0]``; state: C_i as
+    ``[xx, yy, zz, xy, yz, xz]``, initially the identity.  The update of eq. 16 is
+    unconditionally stable, so there is no viscous time-step limit.  Its wave speed is the
+    Hartmann-Neff one: the instantaneous response is bounded by the elastic one."""
+
+    mu: float
+    k: float
+    eta: float
+    rho: float
+    type_code: ClassVar[int] = MAXWELL
+    model: ClassVar[str] = "maxwell"
+    required: ClassVar[tuple] = ("mu", "k", "eta", "rho")
+    state_size: ClassVar[int] = STATE_SIZE
+
+    def __post_init__(self):
+        self._check_common()
+        positive("eta", self.eta, "viscosity")
+
+    def params(self, dim):
+        check_dim(dim)
+        return self._vector(self.mu, self.k, self.rho, self.eta)
+
+    def initial_state(self):
+        return np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0], dtype=np.float64)
+
+
+register(Model(Maxwell, stress_maxwell, energy_maxwell, wave_speed_hartmann_neff))

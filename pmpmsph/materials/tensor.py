@@ -206,3 +206,9 @@ def hartmann_neff_volumetric_energy(lnJ, k):
     k/50 (2 sinh(5/2 ln J))^2, which has no cancellation near J = 1."""
     s = np.sinh(2.5 * lnJ)
     return 0.08 * k * s * s
+
+
+@njit
+def max_keep_nan(a, b):
+    """max(a, b) that returns NaN if b is NaN (so an invalid J is not masked)."""
+    return a if a >= b else b

@@ -55,7 +55,6 @@ import numpy as np
 
 from ..codes import METHOD_CODES, MPM, SPH
 from ..jit import njit
-from ..materials.codes import TAIT_FLUID
 from ..scene.regions import region_methods
 from .scratch import rows_at_least
 from .sph_solid import solid_force
@@ -217,7 +216,7 @@ class SeedInterface(Uncoupled):
         names = list(case.materials)
         self.mpm_materials = sorted({names.index(b.material) for b in case.bodies
                                      if b.method == "mpm" or case.regions})
-        fluid = np.array([m.type_code == TAIT_FLUID for m in case.materials.values()])
+        fluid = np.array([m.fluid for m in case.materials.values()])
         # per MPM material: the materials whose SPH rows join its P2G, and how
         self._joins = []
         for material in self.mpm_materials:

@@ -10,7 +10,7 @@ compression and rings (cases/sph_hydrostatic.toml).
 import numpy as np
 
 from ..codes import METHOD_CODES
-from ..materials.codes import TAIT_FLUID
+from ..materials.fluid import TAIT_FLUID
 from ..materials.fluid import tait_pressure
 
 

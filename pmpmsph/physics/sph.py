@@ -67,11 +67,9 @@ def shifting_fluids(case):
 def diffusing_fluids(case, ignore_delta=False):
     """Whether the scene's SPH fluids take the delta-SPH density diffusion: an updated-
     Lagrangian scene with a Tait fluid body (not only walls) and a non-zero delta."""
-    from ..materials.codes import TAIT_FLUID
-
     return (case.sph.formulation == "updated"
             and (ignore_delta or case.sph.density_diffusion > 0.0)
-            and any(not b.wall and case.materials[b.material].type_code == TAIT_FLUID
+            and any(not b.wall and case.materials[b.material].fluid
                     for b in case.bodies))
 
 
@@ -79,10 +77,8 @@ def fluid_meets_solid(case):
     """Whether an SPH fluid (a Tait body, not a wall) can meet a solid of another material in
     the SPH sums (an SPH solid or wall, or an MPM body in a coupled scene): the mirror pair of
     `kernels.sph.rates.sph_rates`, whose solid rows then carry the fluid pressure `pw`."""
-    from ..materials.codes import TAIT_FLUID
-
     def fluid(b):
-        return case.materials[b.material].type_code == TAIT_FLUID
+        return case.materials[b.material].fluid
 
     return (case.sph.formulation == "updated"
             and any(b.method == "sph" and not b.wall and fluid(b) for b in case.bodies)
@@ -104,19 +100,15 @@ class SPHStage:
         self.dim_tag = (0,) * self.dim
         self.kern_tag = (0,) * (self.kern + 1)
         # inviscid fluids alone need no velocity gradient (F follows from the density)
-        from ..materials.codes import TAIT_FLUID
-
-        mtypes, mparams = materials
+        mats = list(case.materials.values())  # (in the order of `materials`' rows)
         # a fluid's viscosity acts pairwise (Morris et al. 1997, kernels/sph/rates.py) or through
         # its stress: mu per material where it is pairwise, else 0; None if no fluid is
-        pairwise = [mtypes[i] == TAIT_FLUID and spec.laminar == "morris"
-                    for i in range(len(mtypes))]
-        self.morris_mu = (np.array([mparams[i, 3] if pairwise[i] else 0.0
-                                    for i in range(len(mtypes))])
-                          if any(pairwise[i] and mparams[i, 3] > 0.0
-                                 for i in range(len(mtypes))) else None)
-        self.want_L = not all(mtypes[i] == TAIT_FLUID and (mparams[i, 3] == 0.0 or pairwise[i])
-                              for i in range(len(mtypes)))
+        pairwise = [m.fluid and spec.laminar == "morris" for m in mats]
+        self.morris_mu = (np.array([m.viscosity if pw else 0.0 for m, pw in zip(mats, pairwise)])
+                          if any(pw and m.viscosity > 0.0 for m, pw in zip(mats, pairwise))
+                          else None)
+        self.want_L = not all(m.fluid and (m.viscosity == 0.0 or pw)
+                              for m, pw in zip(mats, pairwise))
         self.integrator = spec.integrator
         self.mtypes, self.mparams = materials
         self.gravity = np.zeros(3)
@@ -137,17 +129,15 @@ class SPHStage:
         self.hourglass = spec.hourglass if spec.formulation == "updated" else 0.0
         # per material: a fluid (Tait) meets a solid of another material through the mirror
         # pair of kernels/sph/rates.py's sph_rates
-        self.fluid = np.array([code == TAIT_FLUID for code in mtypes], np.bool_)
+        self.fluid = np.array([m.fluid for m in mats], np.bool_)
         self._M = np.zeros((0, 3, 3))
         self._A = np.zeros((0, 3, 3))
         # delta-SPH: delta h c0 per material (c0 = sqrt(kappa gamma / rho0) of a Tait
         # fluid), 0 for the others; None when no fluid diffuses
         self.dcoef = None
         if diffusing_fluids(case):
-            self.dcoef = np.array([spec.density_diffusion * self.h
-                                   * np.sqrt(mparams[i, 0] * mparams[i, 1] / mparams[i, 2])
-                                   if mtypes[i] == TAIT_FLUID else 0.0
-                                   for i in range(len(mtypes))])
+            self.dcoef = np.array([spec.density_diffusion * self.h * m.sound_speed(self.dim)
+                                   if m.fluid else 0.0 for m in mats])
         # Fourtakas et al. (2019): the hydrostatic part of a pair's density difference is
         # taken out instead of the renormalised gradients (`kernels.sph.density`)
         self.split = self.dcoef is not None and spec.density_diffusion_model == "fourtakas"
@@ -584,12 +574,8 @@ class SPHStage:
         caller's Courant number: the density changes by at most that fraction in a step, so
         a violent expansion cannot drive the continuity density through zero). Global
         (collective when parallel); the CFL limit is the caller's."""
-        from ..materials.codes import TAIT_FLUID
-
-        limit = np.inf
-        for code, par in zip(self.mtypes, self.mparams):
-            if code == TAIT_FLUID and par[3] > 0:
-                limit = min(limit, 0.125 * self.h * self.h * par[2] / par[3])
+        limit = min((m.max_stable_viscous_dt(self.h) for m in self.case.materials.values()),
+                    default=np.inf)
         p = self.p
         if self.evaluated and p.n_owned and "drho" in p:
             rate = float(np.max(np.abs(p["drho"]) / p["rho"]))

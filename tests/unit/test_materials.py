@@ -7,7 +7,7 @@ import pytest
 from pmpmsph.errors import ConfigError
 from pmpmsph.materials import (MODELS, NPAR, PAR_RHO0, HartmannNeff, LinearElastic, Maxwell,
                                NeoHookean, StVenantKirchhoff, TaitFluid, material_from_table)
-from pmpmsph.materials import dispatch
+from pmpmsph.materials import dispatch, registry
 from pmpmsph.materials.dispatch import compute_stress, strain_energy, wave_speed
 from pmpmsph.materials.elastic import (stress_hartmann_neff, stress_linear_elastic,
                                        stress_neo_hookean, stress_stvk)
@@ -358,11 +358,13 @@ def test_dispatch_calls_the_model_functions():
 
 # ------------------------------------------------------------------ registry
 def test_registry_objects():
-    codes = {"linear_elastic": dispatch.LINEAR_ELASTIC, "stvk": dispatch.STVK,
-             "neo_hookean": dispatch.NEO_HOOKEAN, "hartmann_neff": dispatch.HARTMANN_NEFF,
-             "maxwell": dispatch.MAXWELL, "tait_fluid": dispatch.TAIT_FLUID}
+    # the type codes are part of the restart and output files: they must not move
+    codes = {"linear_elastic": 0, "stvk": 1, "neo_hookean": 2, "hartmann_neff": 3,
+             "maxwell": 4, "tait_fluid": 5}
     for name, mat in MATS.items():
         assert mat.type_code == codes[name]
+        assert registry.model_of_code(mat.type_code).config is type(mat)
+        assert mat.fluid == (name == "tait_fluid")
         assert mat.model == name
         for dim in (1, 2, 3):
             par = mat.params(dim)
@@ -452,3 +454,39 @@ def test_not_a_table():
     with pytest.raises(ConfigError) as exc:
         material_from_table("neo_hookean", "materials.rubber", 2)
     assert exc.value.key == "materials.rubber"
+
+
+def test_register_refuses_a_taken_code_or_name():
+    from dataclasses import dataclass, replace
+    from typing import ClassVar
+
+    from pmpmsph.materials.registry import Model, register
+
+    taken = registry.model_of_code(2)
+
+    @dataclass(frozen=True)
+    class Clash(NeoHookean):
+        type_code: ClassVar[int] = 2
+        model: ClassVar[str] = "clash"
+
+    with pytest.raises(ValueError, match="type code 2"):
+        register(replace(taken, config=Clash))
+
+    @dataclass(frozen=True)
+    class Alias(NeoHookean):
+        type_code: ClassVar[int] = 90
+        model: ClassVar[str] = "alias"
+        aliases: ClassVar[tuple] = ("tait",)
+
+    with pytest.raises(ValueError, match="'tait'"):
+        register(Model(Alias, taken.stress, taken.energy, taken.wave_speed))
+    assert 90 not in [m.code for m in registry.models()]
+
+
+def test_the_dispatch_and_the_choice_list_come_from_the_registry():
+    codes = [m.code for m in registry.models()]
+    assert list(MODELS.values())[0] is registry.model_of_code(codes[0]).config
+    for model in registry.models():
+        assert MODELS[model.name] is model.config
+        assert dispatch._STRESS_BY_CODE[model.code] is model.stress
+        assert dispatch._ENERGY_BY_CODE[model.code] is model.energy

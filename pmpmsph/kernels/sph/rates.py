@@ -18,9 +18,8 @@ import numpy as np
 
 from ...jit import njit
 from ...codes import MPM, SPH, WALL
-from ...materials.codes import TAIT_FLUID
 from ...materials.dispatch import compute_stress, wave_speed
-from ...materials.fluid import stress_tait_of_jm1
+from ...materials.fluid import TAIT_FLUID, stress_tait_of_jm1
 from ...materials.tensor import det3
 from .kernel_functions import kernel_dwdr, kernel_w
 

@@ -1,0 +1,90 @@
+"""The material registry: the one place that knows which constitutive models exist.
+
+A law's module ends with one line,
+
+    register(Model(NeoHookean, stress_neo_hookean, energy_neo_hookean, wave_speed_neo_hookean))
+
+which carries everything the rest of the program needs about it (after CB-Geo MPM's
+`Factory::register_product`, include/factory.h): the configuration class (its `model` name
+and aliases, its `type_code`, the table keys it reads, its checks, its parameter vector,
+its traits `fluid` and `state_size`) and the three compiled functions (Cauchy stress,
+stored energy, wave speed). From the registry are generated: the case file's choice list
+(`pmpmsph.materials.MODELS`), the kernels' dispatch on the type code and its compile-time
+specialisations (`pmpmsph.materials.dispatch`), the energy of the diagnostics
+(`kernels.diagnostics`).
+
+`load_laws()` imports every module of this package that is not part of its machinery, so a
+new material is one new file (and its test): nothing else lists the models.
+
+Plain Python: importing this module does not import numba.
+"""
+import importlib
+import pkgutil
+from dataclasses import dataclass
+from pathlib import Path
+
+#: modules of the package that hold no law
+_MACHINERY = {"registry", "base", "codes", "dispatch", "tensor"}
+
+
+@dataclass(frozen=True)
+class Model:
+    """One constitutive model (module docstring).
+
+    config: the configuration dataclass (`materials.base.Material` subclass);
+    stress(F, L, dt, state, par, sigma): Cauchy stress into sigma (may update state);
+    energy(F, state, par): stored energy per unit reference volume;
+    wave_speed(par, J): longitudinal (sound) speed at the current J, for the time step."""
+
+    config: type
+    stress: object
+    energy: object
+    wave_speed: object
+
+    @property
+    def name(self):
+        return self.config.model
+
+    @property
+    def code(self):
+        return self.config.type_code
+
+
+_BY_CODE = {}
+
+
+def register(model):
+    """Add `model`; its type code and names must be new."""
+    cls = model.config
+    if model.code in _BY_CODE and _BY_CODE[model.code].config is not cls:
+        raise ValueError(f"material type code {model.code} of {model.name!r} is taken by "
+                         f"{_BY_CODE[model.code].name!r}")
+    taken = {n: m.name for m in _BY_CODE.values() if m.config is not cls for n in names_of(m)}
+    for n in names_of(model):
+        if n in taken:
+            raise ValueError(f"material name {n!r} of {model.name!r} is taken by {taken[n]!r}")
+    _BY_CODE[model.code] = model
+    return model
+
+
+def names_of(model):
+    """The canonical name and the aliases a case file may use for `model`."""
+    return (model.name,) + tuple(model.config.aliases)
+
+
+def load_laws():
+    """Import every law module of the package (each registers its models); idempotent."""
+    for info in pkgutil.iter_modules([str(Path(__file__).parent)]):
+        if info.name not in _MACHINERY and not info.name.startswith("_"):
+            importlib.import_module(f"{__package__}.{info.name}")
+
+
+def models():
+    """The registered models in type-code order."""
+    load_laws()
+    return [_BY_CODE[c] for c in sorted(_BY_CODE)]
+
+
+def model_of_code(code):
+    load_laws()
+    return _BY_CODE[code]
