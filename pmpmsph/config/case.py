@@ -1,10 +1,13 @@
 """The validated, frozen description of a scene (DESIGN.md section 1, `config/`).
 
 `Case` is what the rest of the code consumes; `load.py` builds it from TOML text or from the
-Python `Scene` API. Nothing here knows about MPI or numba.
+Python `Scene` API. Nothing here knows about MPI; the choice lists of the extension points
+come from their registries.
 """
 from dataclasses import dataclass, field
 from typing import Optional
+
+from ..kernels.sph.smoothing.registry import kernel_code, smoothing_kernels
 
 SHAPES = ("linear", "gimp", "quadratic", "cubic", "cpdi")
 TRANSFERS = ("usl", "usf", "musl")
@@ -13,7 +16,8 @@ VELOCITY_UPDATES = ("flip", "apic", "mls")
 CONTACTS = ("single", "multi")
 METHODS = ("mpm", "sph")
 BC_KINDS = ("fixed", "slip", "friction")
-SPH_KERNELS = ("cubic", "wendland")
+#: `[sph] kernel` choices: the registered smoothing kernels, in code order
+SPH_KERNELS = tuple(k.name for k in smoothing_kernels())
 SPH_INTEGRATORS = ("verlet", "predictor_corrector", "rk3")
 SPH_FORMULATIONS = ("updated", "total")
 
@@ -98,7 +102,7 @@ class SPHSpec:
 
     @property
     def kernel_code(self):
-        return SPH_KERNELS.index(self.kernel)
+        return kernel_code(self.kernel)
 
 
 @dataclass(frozen=True)

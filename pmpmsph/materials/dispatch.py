@@ -5,9 +5,8 @@
   strain_energy(mtype, F, state, par)                   stored energy per reference volume
   wave_speed(mtype, par, J)                             longitudinal (sound) speed at J
 
-Each is an `if mtype == code: return law(...)` chain over the registered models, written
-out as source and compiled once per process (not cached on disk: it is inlined into its
-callers, whose cache holds it). An unknown code gives a NaN stress / energy / wave speed,
+Each is an `if mtype == code: return law(...)` chain over the registered models
+(`jit.code_switch`). An unknown code gives a NaN stress / energy / wave speed,
 which the callers' NaN checks report. The laws' own docstrings give their equations.
 
 The switches are inlined into the calling kernel at the Numba IR level
@@ -24,26 +23,13 @@ update itself and multiplied compile time).
 import numpy as np
 from numba.extending import overload
 
-from ..jit import njit
+from ..jit import code_switch, njit
 from . import registry
 
 __all__ = ["compute_stress", "compute_stress_tagged", "material_tag", "strain_energy",
            "strain_energy_tagged", "wave_speed"]
 
 _MODELS = registry.models()
-
-
-def _switch(name, part, args, missing, **scope):
-    """njit'ed `def name(mtype, args)`: return the `part` of the model with that code,
-    run `missing` (with the names in `scope`) for an unknown code."""
-    lines = [f"def {name}(mtype, {args}):"]
-    for i, model in enumerate(_MODELS):
-        scope[f"law{model.code}"] = getattr(model, part)
-        lines.append(f"    {'if' if i == 0 else 'elif'} mtype == {model.code}:")
-        lines.append(f"        return law{model.code}({args})")
-    lines.append(f"    {missing}")
-    exec(compile("\n".join(lines), f"<pmpmsph.materials.dispatch.{name}>", "exec"), scope)
-    return njit(inline="always", cache=False)(scope[name])
 
 
 @njit(inline="always")
@@ -53,13 +39,15 @@ def _nan_stress(sigma):
             sigma[i, j] = np.nan
 
 
-compute_stress = _switch("compute_stress", "stress", "F, L, dt, state, par, sigma",
-                         "_nan_stress(sigma)", _nan_stress=_nan_stress)
-strain_energy = _switch("strain_energy", "energy", "F, state, par", "return np.nan", np=np)
-wave_speed = _switch("wave_speed", "wave_speed", "par, J", "return np.nan", np=np)
-
 _STRESS_BY_CODE = {m.code: m.stress for m in _MODELS}
 _ENERGY_BY_CODE = {m.code: m.energy for m in _MODELS}
+
+compute_stress = code_switch("compute_stress", "F, L, dt, state, par, sigma", _STRESS_BY_CODE,
+                             "_nan_stress(sigma)", _nan_stress=_nan_stress)
+strain_energy = code_switch("strain_energy", "F, state, par", _ENERGY_BY_CODE,
+                            "return np.nan", np=np)
+wave_speed = code_switch("wave_speed", "par, J", {m.code: m.wave_speed for m in _MODELS},
+                         "return np.nan", np=np)
 
 
 def material_tag(codes):

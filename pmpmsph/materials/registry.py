@@ -18,10 +18,9 @@ new material is one new file (and its test): nothing else lists the models.
 
 Plain Python: importing this module does not import numba.
 """
-import importlib
-import pkgutil
 from dataclasses import dataclass
-from pathlib import Path
+
+from ..plugins import import_all
 
 #: modules of the package that hold no law
 _MACHINERY = {"registry", "base", "codes", "dispatch", "tensor"}
@@ -74,9 +73,7 @@ def names_of(model):
 
 def load_laws():
     """Import every law module of the package (each registers its models); idempotent."""
-    for info in pkgutil.iter_modules([str(Path(__file__).parent)]):
-        if info.name not in _MACHINERY and not info.name.startswith("_"):
-            importlib.import_module(f"{__package__}.{info.name}")
+    import_all(__package__, __file__, _MACHINERY)
 
 
 def models():

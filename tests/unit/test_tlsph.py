@@ -4,11 +4,14 @@ import pytest
 from tlsph_reference import corrected_kernel_values, fd_kernel_gradient
 
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph.kernel_functions import CUBIC, WENDLAND_C2, kernel_dwdr, kernel_w
+from pmpmsph.kernels.sph.kernel_functions import kernel_dwdr, kernel_w
+from pmpmsph.kernels.sph.smoothing.registry import kernel_code
 from pmpmsph.kernels.sph.tlsph import (current_volume, deformation_gradient, energies, expm3,
                                    first_piola, internal_force, kernel_correction,
                                    material_stress, update_F_exp, velocity_gradient)
 from pmpmsph.materials import material_from_table
+
+CUBIC, WENDLAND_C2 = kernel_code("cubic"), kernel_code("wendland")
 
 
 def lattice(n, dim, jitter=0.0, seed=0):

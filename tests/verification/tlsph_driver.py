@@ -31,11 +31,13 @@ import time
 import numpy as np
 
 from pmpmsph.kernels.neighbours import neighbour_lists
-from pmpmsph.kernels.sph.kernel_functions import CUBIC
+from pmpmsph.kernels.sph.smoothing.registry import kernel_code
 from pmpmsph.kernels.sph.tlsph import (current_volume, deformation_gradient, energies,
                                    first_piola, internal_force, kernel_correction,
                                    material_stress, update_F_exp, velocity_gradient)
 from pmpmsph.materials import material_from_table
+
+CUBIC = kernel_code("cubic")
 
 MU, K_BULK, RHO = 1.25, 5.833, 3.0
 

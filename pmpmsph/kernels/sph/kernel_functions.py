@@ -1,75 +1,24 @@
-"""SPH smoothing kernels W(r, h) and dW/dr in 1D/2D/3D, support radius 2h.
+"""SPH smoothing kernels W(r, h) and dW/dr in 1D/2D/3D, support radius 2h: the switch over
+the registered kernels (`kernels.sph.smoothing`, one module each: `cubic` the cubic spline
+of seed 004 section 2, `wendland` Wendland's C2, `wendland_c4` Wendland's C4).
 
-Codes: ``CUBIC = 0`` the cubic spline of seed 004, section 2 (Monaghan's M4; 2D factor
-10/(7 pi h^2), 1D 2/(3h), 3D 1/(pi h^3)); ``WENDLAND_C2 = 1`` Wendland's C2 function
-(1 - q/2)^4 (2q + 1) with 7/(4 pi h^2) in 2D and 21/(16 pi h^3) in 3D, and the 1D C2
-function (1 - q/2)^3 (3q/2 + 1) with 5/(8h). q = r/h in both, so both reach 2h.
-
-`kernel_w(kind, dim, r, h)` and `kernel_dwdr(kind, dim, r, h)`; the gradient with respect to
-x_a of W(|x_a - x_b|) is dW/dr * (x_a - x_b)/r (zero at r = 0).
+`kernel_w(kind, dim, r, h)` and `kernel_dwdr(kind, dim, r, h)` (kind: the kernel's code;
+the callers pass it as a compile-time constant, `len(kern_tag) - 1`, so the chain folds
+to one kernel); the gradient with respect to x_a of W(|x_a - x_b|) is
+dW/dr * (x_a - x_b)/r (zero at r = 0). An unknown code gives NaN.
 """
 import numpy as np
 
-from ...jit import njit
+from ...jit import code_switch, njit
+from .smoothing.registry import SUPPORT, smoothing_kernels
 
-CUBIC = 0
-WENDLAND_C2 = 1
-KERNELS = {"cubic": CUBIC, "wendland": WENDLAND_C2}
-#: support radius in units of h (both kernels)
-SUPPORT = 2.0
+__all__ = ["SUPPORT", "kernel_w", "kernel_dwdr", "pair_gradient"]
 
-
-@njit(inline="always")
-def _norm(kind, dim, h):
-    if kind == CUBIC:
-        if dim == 1:
-            return 2.0 / (3.0 * h)
-        if dim == 2:
-            return 10.0 / (7.0 * np.pi * h * h)
-        return 1.0 / (np.pi * h * h * h)
-    if dim == 1:
-        return 5.0 / (8.0 * h)
-    if dim == 2:
-        return 7.0 / (4.0 * np.pi * h * h)
-    return 21.0 / (16.0 * np.pi * h * h * h)
-
-
-@njit(inline="always")
-def kernel_w(kind, dim, r, h):
-    """W(r, h) (seed 004, section 2, for the cubic spline)."""
-    q = r / h
-    if q >= 2.0:
-        return 0.0
-    s = _norm(kind, dim, h)
-    if kind == CUBIC:
-        if q < 1.0:
-            return s * (1.0 - 1.5 * q * q + 0.75 * q * q * q)
-        t = 2.0 - q
-        return s * 0.25 * t * t * t
-    t = 1.0 - 0.5 * q
-    if dim == 1:
-        return s * t * t * t * (1.5 * q + 1.0)
-    return s * t * t * t * t * (2.0 * q + 1.0)
-
-
-@njit(inline="always")
-def kernel_dwdr(kind, dim, r, h):
-    """dW/dr (<= 0) of `kernel_w`."""
-    q = r / h
-    if q >= 2.0:
-        return 0.0
-    s = _norm(kind, dim, h) / h
-    if kind == CUBIC:
-        if q < 1.0:
-            return s * (-3.0 * q + 2.25 * q * q)
-        t = 2.0 - q
-        return -s * 0.75 * t * t
-    t = 1.0 - 0.5 * q
-    if dim == 1:
-        # d/dq [t^3 (1.5 q + 1)] = -1.5 t^2 (1.5q + 1) + 1.5 t^3 = -3 q t^2
-        return -s * 3.0 * q * t * t
-    # d/dq [t^4 (2q + 1)] = -2 t^3 (2q + 1) + 2 t^4 = -5 q t^3
-    return -s * 5.0 * q * t * t * t
+kernel_w = code_switch("kernel_w", "dim, r, h", {k.code: k.w for k in smoothing_kernels()},
+                       "return np.nan", np=np)
+kernel_dwdr = code_switch("kernel_dwdr", "dim, r, h",
+                          {k.code: k.dwdr for k in smoothing_kernels()}, "return np.nan",
+                          np=np)
 
 
 @njit(inline="always")

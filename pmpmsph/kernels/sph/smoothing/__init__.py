@@ -1,0 +1,1 @@
+"""SPH smoothing kernels, one module each, registered with `registry.register_kernel`."""
