@@ -4,7 +4,9 @@ Stages and materials *declare* the fields they need; only declared fields are al
 migrated, copied to halos and written. Owned particles are rows [0, n_owned); halo copies
 (when a later stage asks for them) follow and are never written back.
 """
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Optional
 
 import numpy as np
 
@@ -48,7 +50,7 @@ class ParticleSet:
 
     GROWTH = 1.5
 
-    def __init__(self, dim, capacity=0):
+    def __init__(self, dim: int, capacity: int = 0) -> None:
         self.dim = dim
         self.specs = {}
         self.arrays = {}
@@ -62,7 +64,7 @@ class ParticleSet:
     def _shape(self, spec, n):
         return (n,) + tuple(self.dim if s == "dim" else s for s in spec.shape)
 
-    def declare(self, spec):
+    def declare(self, spec: FieldSpec) -> None:
         """Add a field (idempotent for an identical spec)."""
         if spec.name in self.specs:
             if self.specs[spec.name] != spec:
@@ -80,31 +82,31 @@ class ParticleSet:
         elif spec.fill:
             arr[...] = spec.fill
 
-    def copy_to_halo(self, name):
+    def copy_to_halo(self, name: str) -> None:
         """Also copy an already declared field to halo particles (e.g. vol0 for
         total-Lagrangian SPH, whose neighbours sum reference volumes)."""
         from dataclasses import replace
 
         self.specs[name] = replace(self.specs[name], halo=True)
 
-    def deformation(self, n=None):
+    def deformation(self, n: Optional[int] = None) -> np.ndarray:
         """F (n, 3, 3) or, in a J-only scene, J (n,) over the rows [0, n) (default: owned);
         the kernels that read either take this array (see `kernels.deformation`)."""
         arr = self.arrays["F"] if "F" in self.arrays else self.arrays["J"]
         return arr[: self.n_owned if n is None else n]
 
-    def __contains__(self, name):
+    def __contains__(self, name: str) -> bool:
         return name in self.arrays
 
-    def __getitem__(self, name):
+    def __getitem__(self, name: str) -> np.ndarray:
         """The owned rows of a field (a view)."""
         return self.arrays[name][: self.n_owned]
 
-    def with_halo(self, name):
+    def with_halo(self, name: str) -> np.ndarray:
         """Owned rows followed by the halo copies (a view)."""
         return self.arrays[name][: self.n_total]
 
-    def move(self, rows, axis, to):
+    def move(self, rows: np.ndarray, axis: int, to: np.ndarray) -> None:
         """Set component `axis` of the owned positions x[rows] to `to`, for a mover other than
         the stages' own drifts (a prescribed velocity). Fields that follow positions move
         with them: the SPH hourglass control's displacement u, integrated beside x rather
@@ -115,7 +117,7 @@ class ParticleSet:
         x[rows, axis] = to
 
     # -- size changes -----------------------------------------------------------------------
-    def reserve(self, capacity):
+    def reserve(self, capacity: int) -> None:
         if capacity <= self.capacity:
             return
         capacity = max(int(capacity), int(self.capacity * self.GROWTH) + 16)
@@ -126,7 +128,7 @@ class ParticleSet:
             self.arrays[name] = new
         self.capacity = capacity
 
-    def append(self, values):
+    def append(self, values: Mapping[str, np.ndarray]) -> None:
         """Append owned particles given as a dict of arrays (fields not given get defaults)."""
         unknown = set(values) - set(self.specs)
         if unknown:
@@ -136,7 +138,7 @@ class ParticleSet:
             raise RuntimeError("drop halo particles before appending owned ones")
         self.n_owned = self.n_total = self._write_rows(values, n_new)
 
-    def remove(self, index):
+    def remove(self, index: np.ndarray) -> None:
         """Drop owned rows `index`, filling the holes from the end (order is not kept)."""
         index = np.unique(np.asarray(index, dtype=np.int64))
         if len(index) == 0:
@@ -152,14 +154,14 @@ class ParticleSet:
             arr[holes] = arr[movers]
         self.n_owned = self.n_total = n - k
 
-    def take(self, index):
+    def take(self, index: np.ndarray) -> None:
         """Keep only the owned rows `index`, in that order (sorting, rebuilding)."""
         index = np.asarray(index, dtype=np.int64)
         for arr in self.arrays.values():
             arr[: len(index)] = arr[index]
         self.n_owned = self.n_total = len(index)
 
-    def append_halo(self, values):
+    def append_halo(self, values: Mapping[str, np.ndarray]) -> None:
         """Append halo copies (rows after the owned ones); fields not given get defaults."""
         n_new = len(next(iter(values.values()))) if values else 0
         self.n_total = self._write_rows(values, n_new)
@@ -176,10 +178,11 @@ class ParticleSet:
                 self._fill(spec, arr[lo:hi])
         return hi
 
-    def drop_halo(self):
+    def drop_halo(self) -> None:
         self.n_total = self.n_owned
 
-    def fields(self, *, migrate=None, halo=None, output=None):
+    def fields(self, *, migrate: Optional[bool] = None, halo: Optional[bool] = None,
+               output: Optional[bool] = None) -> list[str]:
         out = []
         for name, spec in self.specs.items():
             if migrate is not None and spec.migrate != migrate:

@@ -6,43 +6,52 @@
     scene.body(name="disc", material="rubber", shape="disc", centre=[.5, .5], radius=.2, ppc=2)
     sim = scene.simulation()          # validated exactly like a TOML case
 """
+from __future__ import annotations
+
 import copy
+from typing import TYPE_CHECKING, Any
 
 from .config import case_from_dict
 
+if TYPE_CHECKING:  # (annotations only: simulation imports the whole solver)
+    from .config.case import Case
+    from .simulation import Simulation
+
 
 class Scene:
-    def __init__(self, dimension, **sections):
+    """A case as nested dicts, with one method per repeated table (module docstring)."""
+
+    def __init__(self, dimension: int, **sections: Any) -> None:
         self.data = {"dimension": dimension, "materials": {}, "bodies": []}
         self.data.update(copy.deepcopy(sections))
 
-    def material(self, name, **params):
+    def material(self, name: str, **params: Any) -> Scene:
         self.data["materials"][name] = params
         return self
 
-    def body(self, **spec):
+    def body(self, **spec: Any) -> Scene:
         self.data["bodies"].append(spec)
         return self
 
-    def boundary(self, **spec):
+    def boundary(self, **spec: Any) -> Scene:
         self.data.setdefault("boundaries", []).append(spec)
         return self
 
-    def load(self, **spec):
+    def load(self, **spec: Any) -> Scene:
         self.data.setdefault("loads", []).append(spec)
         return self
 
-    def set(self, key, value):
+    def set(self, key: str, value: Any) -> Scene:
         """Set a dotted key, e.g. ``scene.set("mpm.shape", "cubic")``."""
         from .config.load import apply_overrides
 
         apply_overrides(self.data, [(key, value)])
         return self
 
-    def case(self, name="scene"):
+    def case(self, name: str = "scene") -> Case:
         return case_from_dict(self.data, name=name)
 
-    def simulation(self, **kwargs):
+    def simulation(self, **kwargs: Any) -> Simulation:
         from .simulation import Simulation
 
         return Simulation(self.case(), **kwargs)

@@ -4,13 +4,17 @@
 `run()` loops, schedules output and diagnostics, and turns a failing particle into a
 `RunError` decided collectively on all ranks.
 """
+from __future__ import annotations
+
 import logging
 import math
 import os
 import time
+from typing import Any, Callable, Optional
 
 import numpy as np
 
+from .config.case import Case
 from .build import build_particles, material_arrays, sph_stage_class
 from .errors import ConfigError, RunError
 from .io.output import Output
@@ -43,8 +47,10 @@ def _hms(seconds):
 
 
 class Simulation(Output, Restart, Rebalancing):
-    def __init__(self, case, dist=None, out_dir=None, overwrite=False, write_output=True,
-                 out_key="--out", max_steps=None, check_steps=False):
+    def __init__(self, case: Case, dist: Optional[Distributor] = None,
+                 out_dir: Optional[str] = None, overwrite: bool = False,
+                 write_output: bool = True, out_key: str = "--out",
+                 max_steps: Optional[int] = None, check_steps: bool = False) -> None:
         """`out_key` names the setting that chose `out_dir` in messages about it. With
         `check_steps` (the command line) a case needing more than time.max_steps steps is
         refused unless `max_steps` (--max-steps) bounds the run (`check_step_count`); a
@@ -171,7 +177,7 @@ class Simulation(Output, Restart, Rebalancing):
                              mparams)
         return self.dist.max(c)
 
-    def stable_dt(self):
+    def stable_dt(self) -> float:
         """CFL limit with Courant number 1: h / max(c + |v|) (and the SPH viscous limit)."""
         c = self.signal_speed()
         limit = self.h / c if c > 0 else math.inf
@@ -191,11 +197,11 @@ class Simulation(Output, Restart, Rebalancing):
 
         return self.dist.agree("time", check)
 
-    def steps_to_end(self):
+    def steps_to_end(self) -> float:
         """About how many steps remain to time.end at the current dt."""
         return max(self.case.time.end - self.time, 0.0) / self.dt
 
-    def check_step_count(self, max_steps=None):
+    def check_step_count(self, max_steps: Optional[int] = None) -> None:
         """Refuse a run that would take more than time.max_steps steps (a dt typed 1e-15
         would run until killed) unless `max_steps` (--max-steps) bounds it. Collective."""
         tspec = self.case.time
@@ -220,7 +226,7 @@ class Simulation(Output, Restart, Rebalancing):
                 raise RunError(self.step_count, -1, "no finite time step (NaN velocity/stress)")
             self.dt = self.case.time.cfl * limit
 
-    def diagnostics(self):
+    def diagnostics(self) -> dict[str, float]:
         """Global sums as a dict (every rank gets the same numbers)."""
         p = self.particles
         n = p.n_owned
@@ -236,7 +242,7 @@ class Simulation(Output, Restart, Rebalancing):
                 "pz": s[5], "mass": s[6]}
 
     # -- the step ----------------------------------------------------------------------------
-    def step(self):
+    def step(self) -> None:
         """One time step in the fixed order of DESIGN.md §3 (stages the scene lacks are absent)."""
         if self._fault is not None and self._fault == (self.dist.rank, self.step_count):
             raise RuntimeError(f"fault injected on rank {self.dist.rank} at step "
@@ -333,7 +339,8 @@ class Simulation(Output, Restart, Rebalancing):
         raise RunError(self.step_count + 1, gid, cause)
 
     # -- the loop ------------------------------------------------------------------------------
-    def run(self, max_steps=None, progress_every=None, on_step=None):
+    def run(self, max_steps: Optional[int] = None, progress_every: Optional[float] = None,
+            on_step: Optional[Callable[[Simulation], Any]] = None) -> dict[str, Any]:
         """Advance to case.time.end (or max_steps); returns a summary dict."""
         from .io.checkpoint import STOP
 
@@ -396,7 +403,7 @@ class Simulation(Output, Restart, Rebalancing):
                 "warmup": self.timers.total.get("jit_warmup", 0.0), "particles": n_global,
                 "timers": self.timers.as_dict()}
 
-    def close(self):
+    def close(self) -> None:
         if self.writer is not None:
             self.writer.close()
             self.writer = None

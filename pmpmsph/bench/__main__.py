@@ -12,7 +12,7 @@ import os
 import sys
 
 
-def main(argv=None):
+def main(argv: "list[str] | None" = None) -> None:
     from ..parallel.distributor import configure_numba_cache
 
     configure_numba_cache()

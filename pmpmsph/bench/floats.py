@@ -17,6 +17,7 @@ the reference and the block's settling (its centre-of-mass vertical speed at the
 the impact speed sqrt(2 g drop)).
 """
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,6 +25,9 @@ from pmpmsph import Scene
 
 from . import write_rows
 from ..physics.hydrostatic import tait_hydrostatic_density
+
+if TYPE_CHECKING:
+    from ..parallel.distributor import Distributor
 
 COMBOS = ("mpm_in_sph", "sph_in_mpm", "mpm_in_mpm", "sph_in_sph")
 RHO_F, KAPPA, GAMMA, MU, G = 997.0, 2.0e4, 7.0, 0.98, 9.81
@@ -131,7 +135,7 @@ def _block_state(sim, spacing, width, tank):
     return surface - bottom, float(np.average(v[block, 1], weights=m[block]))
 
 
-def float_run(combo, dist=None, **kw):
+def float_run(combo: str, dist: "Distributor | None" = None, **kw: float) -> dict:
     """Run one float (one rank; `kw` as `float_scene`); returns a dict: fraction (mean over
     the last fifth of the run), reference, error (relative), settle (max |v_com| over the
     last tenth / impact speed), steps, particles."""

@@ -175,8 +175,8 @@ def corun(particles, steps, out):
     return ceiling
 
 
-def run(ranks, particles, steps, out, output_every=0, repeat=3, scene="column",
-        spacing=0.0033):
+def run(ranks: "list[int]", particles: int, steps: int, out: str, output_every: int = 0,
+        repeat: int = 3, scene: str = "column", spacing: float = 0.0033) -> "list[dict]":
     """`repeat` rounds, each running every rank count once in turn (so slow spells of a shared
     machine hit all counts alike); each count's fastest round is tabulated, as timeit does,
     and the efficiency of every round is printed beside it."""

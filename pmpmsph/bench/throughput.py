@@ -15,8 +15,12 @@ WCSPH): cases/sph_dam_break.toml at the same dx, h = 1.3 dx, c0, alpha and integ
 wall) count, as in PySPH's figure.
 """
 import time
+from typing import TYPE_CHECKING
 
 from ..scene_api import Scene
+
+if TYPE_CHECKING:
+    from ..simulation import Simulation
 
 
 def mpm_peer_scene(n_grid, shape="quadratic", transfer="usl", dim=2):
@@ -34,7 +38,8 @@ def mpm_peer_scene(n_grid, shape="quadratic", transfer="usl", dim=2):
     return sc
 
 
-def time_simulation(sim, steps, warmup=20, repeat=3):
+def time_simulation(sim: "Simulation", steps: int, warmup: int = 20,
+                    repeat: int = 3) -> "tuple[float, float]":
     """Best of `repeat` timed blocks of `steps` steps after `warmup` steps (JIT included)."""
     t0 = time.perf_counter()
     sim.run(max_steps=warmup)
@@ -47,7 +52,8 @@ def time_simulation(sim, steps, warmup=20, repeat=3):
     return best, warm
 
 
-def bench_mpm(n_grid=128, steps=400, repeat=3, shape="quadratic", dim=2):
+def bench_mpm(n_grid: int = 128, steps: int = 400, repeat: int = 3, shape: str = "quadratic",
+              dim: int = 2) -> dict:
     sim = mpm_peer_scene(n_grid, shape=shape, dim=dim).simulation()
     n = sim.particles.n_owned
     el, warm = time_simulation(sim, steps, repeat=repeat)
@@ -56,7 +62,7 @@ def bench_mpm(n_grid=128, steps=400, repeat=3, shape="quadratic", dim=2):
             "rate": n * steps / el, "warmup_s": warm, "phases": phases}
 
 
-def bench_small(steps=20000):
+def bench_small(steps: int = 20000) -> dict:
     from ..config import load_case_file
     from ..simulation import Simulation
     import os
@@ -69,7 +75,7 @@ def bench_small(steps=20000):
             "steps_per_s": steps / el}
 
 
-def bench_sph(dx=0.02, steps=500, repeat=3, warmup=20):
+def bench_sph(dx: float = 0.02, steps: int = 500, repeat: int = 3, warmup: int = 20) -> dict:
     import os
 
     from ..config import load_case_file

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 from ..kernels.sph.smoothing.registry import kernel_code, smoothing_kernels
+from ..materials.base import Material
 
 SHAPES = ("linear", "gimp", "quadratic", "cubic", "cpdi")
 TRANSFERS = ("usl", "usf", "musl")
@@ -233,13 +234,13 @@ class Case:
     dim: int
     grid: Optional[GridSpec]
     mpm: MPMSpec
-    materials: dict
-    bodies: tuple
+    materials: dict[str, Material]
+    bodies: tuple[BodySpec, ...]
     boundaries: tuple = ()
     loads: tuple = ()
     prescribed: tuple = ()
-    gravity: tuple = ()
-    time: TimeSpec = None
+    gravity: tuple[float, ...] = ()
+    time: Optional[TimeSpec] = None
     output: OutputSpec = field(default_factory=OutputSpec)
     parallel: ParallelSpec = field(default_factory=ParallelSpec)
     sph: Optional[SPHSpec] = None
@@ -249,23 +250,23 @@ class Case:
     coupling: CouplingSpec = field(default_factory=CouplingSpec)
     text: str = ""
 
-    def _methods(self):
+    def _methods(self) -> set[str]:
         return {b.method for b in self.bodies} | {r.method for r in self.regions}
 
     @property
-    def has_mpm(self):
+    def has_mpm(self) -> bool:
         return "mpm" in self._methods()
 
     @property
-    def has_sph(self):
+    def has_sph(self) -> bool:
         return "sph" in self._methods()
 
     @property
-    def coupled(self):
+    def coupled(self) -> bool:
         return self.has_mpm and self.has_sph
 
     @property
-    def tracks_J_only(self):
+    def tracks_J_only(self) -> bool:
         """True when particles carry J = det F instead of F (`mpm.deformation` "auto" or "J",
         which load.py refuses otherwise): a pure-MPM scene of fluids (Tait), any shape but
         CPDI, whose domains F shapes."""
@@ -273,10 +274,10 @@ class Case:
             return False
         return all(self.materials[b.material].fluid for b in self.bodies)
 
-    def material_names(self):
+    def material_names(self) -> list[str]:
         return list(self.materials)
 
-    def body_index(self, name):
+    def body_index(self, name: str) -> int:
         for i, b in enumerate(self.bodies):
             if b.name == name:
                 return i
