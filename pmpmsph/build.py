@@ -3,6 +3,7 @@ import numpy as np
 
 from .codes import METHOD_CODES
 from .errors import ConfigError
+from .kernels.mpm.shape_functions.registry import shape_named
 from .particles import F_FIELD, J_FIELD, FieldSpec, ParticleSet
 from .physics.coupling import coupling_fields
 from .physics.loads import PrescribedVelocity, TractionLoads, _in_region
@@ -174,10 +175,10 @@ def build_particles(case, keep=None):
             vals["lp"] = np.tile(0.5 * spacing / np.array(case.grid.cell_size), (n, 1))
             # GIMP's 3-node stencil covers half-widths up to 1/2 cell; a CPDI domain grows
             # with the stretch up to `mpm.cpdi_reach` cells, so start it at no more than one
-            gimp = case.mpm.shape == "gimp"
-            if np.any(vals["lp"] > (0.5 if gimp else 1.0) + 1e-12):
-                raise ConfigError(f"{key}.spacing", "GIMP needs particle spacing <= cell size"
-                                  if gimp else "CPDI needs particle spacing <= 2 cell sizes")
+            bound = shape_named(case.mpm.shape).half_width
+            if np.any(vals["lp"] > bound + 1e-12):
+                raise ConfigError(f"{key}.spacing", f"{case.mpm.shape.upper()} needs particle "
+                                  f"spacing <= {2 * bound:g} cell size(s)")
         if state_size:
             st = np.zeros((n, state_size))
             st[:, : mat.state_size] = mat.initial_state()

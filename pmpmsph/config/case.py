@@ -7,10 +7,12 @@ come from their registries.
 from dataclasses import dataclass, field
 from typing import Optional
 
+from ..kernels.mpm.shape_functions.registry import shape_functions
 from ..kernels.sph.smoothing.registry import kernel_code, smoothing_kernels
 from ..materials.base import Material
 
-SHAPES = ("linear", "gimp", "quadratic", "cubic", "cpdi")
+#: `[mpm] shape` choices: the registered shape functions, in code order
+SHAPES = tuple(s.name for s in shape_functions())
 TRANSFERS = ("usl", "usf", "musl")
 #: how G2P hands the grid velocity back to the particles (kernels/mpm/transfers.py, affine.py)
 VELOCITY_UPDATES = ("flip", "apic", "mls")

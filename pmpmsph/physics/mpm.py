@@ -22,7 +22,8 @@ from ..kernels.coupling import gather_increment, grid_force_kick
 from ..kernels.mpm.transfers import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
 from ..kernels.mpm.affine import g2p_affine, p2g_affine
 from ..kernels.partition import cell_keys
-from ..kernels.mpm.shapes import CPDI, SHAPE_CODES, cpdi_reach, static_tags
+from ..kernels.mpm.shape_functions.registry import shape_named
+from ..kernels.mpm.shapes import CPDI, cpdi_reach, static_tags
 from ..materials.dispatch import material_tag
 from ..particles import FieldSpec
 from .boundary import GridBoundaries
@@ -43,7 +44,8 @@ class MPMStage:
         self.p = particles
         spec = case.mpm
         self.dim = case.dim
-        self.kind = SHAPE_CODES[spec.shape]
+        self.shape = shape_named(spec.shape)
+        self.kind = self.shape.code
         self.tags = static_tags(self.dim, self.kind)
         self.transfer = spec.transfer
         self.flip = spec.flip
@@ -147,21 +149,18 @@ class MPMStage:
 
     def _contact_gap(self):
         """Displacement-check threshold of multi-field contact for this shape function."""
-        from ..kernels.mpm.shapes import weights_1d
-
         def weight(r):  # weight of the node at 0 seen from a particle at distance r
-            base, w, _ = weights_1d(self.kind, 10.0 + r, 0.25)
+            base, w, _ = self.shape.contact_weights(10.0 + r, 0.25)
             k = 10 - base
             return w[k] if 0 <= k < 4 else 0.0
 
-        support = {0: 1.0, 1: 1.25, 2: 1.5, 3: 2.0, 4: 1.5}[self.kind]
-        return touching_separation(weight, self.grid.dx, support)
+        return touching_separation(weight, self.grid.dx, self.shape.support)
 
     @staticmethod
     def fields(case):
         """Fields this stage needs beyond the core ones."""
         out = []
-        if case.mpm.shape in ("gimp", "cpdi"):
+        if shape_named(case.mpm.shape).half_width > 0.0:  # (GIMP, CPDI)
             out.append(FieldSpec("lp", ("dim",)))
         if any(b.stress for b in case.bodies):
             out.append(FieldSpec("prestress", (3, 3)))

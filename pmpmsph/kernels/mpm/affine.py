@@ -25,7 +25,8 @@ import numpy as np
 
 from ...jit import njit
 from ...materials.tensor import block_inverse
-from .shapes import CUBIC, LINEAR, QUADRATIC, cpdi_domain, local_layout, n_corners, stencil
+from .shapes import (LINEAR, apic_d_inverse, cpdi_domain, local_layout, n_corners,
+                     stencil)
 
 
 @njit
@@ -56,17 +57,8 @@ def _layout(dim_tag, kind_tag, strides, offset, n_nodes, inv_dx):
     kind = len(kind_tag) - 1
     st, off, nax = local_layout(dim, strides, offset, n_nodes)
     dx = 1.0 / inv_dx
-    return dim, kind, st, off, nax, dx, _bspline_inverse_d(kind, dx)
-
-
-@njit
-def _bspline_inverse_d(kind, dx):
-    """D^-1 (a multiple of I) of the B-splines (Jiang 2015 §5.1); 0 for the other shapes."""
-    if kind == QUADRATIC:
-        return 4.0 / (dx * dx)
-    if kind == CUBIC:
-        return 3.0 / (dx * dx)
-    return 0.0
+    # D^-1, a multiple of I for the B-splines (Jiang 2015 §5.1); 0 for the other shapes
+    return dim, kind, st, off, nax, dx, apic_d_inverse(kind) / (dx * dx)
 
 
 @njit

@@ -1,15 +1,15 @@
 """MPM shape functions as tensor products of 1-D weights, and the per-particle stencil.
 
-Kinds (integer codes, so one compiled kernel serves all of them):
-  LINEAR    linear hat, thesis eqs. 63-67 (2 nodes per axis)
-  GIMP      uniform GIMP (Bardenhagen & Kober 2004, used by Raymond seed 000 section 3),
-            particle half-width `lp` in cell units (3 nodes per axis for lp <= 1/2)
-  QUADRATIC quadratic B-spline (3 nodes per axis)
-  CUBIC     cubic B-spline (4 nodes per axis)
-  CPDI      convected particle domain interpolation, CPDI1 (Sadeghirad, Brannon & Burghardt
-            2011): the particle's domain is the parallelogram (parallelepiped) of half-edges
-            r_a = F lp_a e_a, and its weight and gradient are averages of linear hats over
-            that domain, evaluated from its 2^dim corners (`corner_stencil`)
+The shape functions are registered one module each in `kernels.mpm.shape_functions`
+(linear hat, uniform GIMP, quadratic and cubic B-splines, CPDI1); this module generates
+from that registry the switches the transfers call and builds the stencils:
+  `weights_1d(kind, X, lp)`          (base, w, dw) of the 1-D weights at X, runtime kind
+  `weights_tagged(kind_tag, X, lp)`  the same with the kind fixed at compile time
+  `stencil_width(kind)`              nodes per axis of one stencil
+  `apic_d_inverse(kind)`             APIC's constant D^-1 dx^2 (0: summed per particle)
+CPDI (convected particle domain interpolation, CPDI1, Sadeghirad, Brannon & Burghardt
+2011) averages linear hats over the particle's domain, the parallelogram (parallelepiped)
+of half-edges r_a = F lp_a e_a, from its 2^dim corners (`corner_stencil`).
 All coordinates here are in cell units: X = (x - origin)/dx with `origin` the position of
 global (padded) node 0 (`Grid.node0`), so global node i sits at X = i; a rank's local node
 index is the global one minus its grid's `offset`. Weights come from the global X, so they
@@ -20,109 +20,33 @@ import math
 import numpy as np
 from numba.extending import overload
 
-from ...jit import njit
+from ...jit import code_switch, njit
 from ...materials.tensor import cofactor3
+from .shape_functions.cpdi import CPDI
+from .shape_functions.registry import shape_functions, shape_named
 
-LINEAR, GIMP, QUADRATIC, CUBIC, CPDI = 0, 1, 2, 3, 4
-SHAPE_CODES = {"linear": LINEAR, "gimp": GIMP, "quadratic": QUADRATIC, "cubic": CUBIC,
-               "cpdi": CPDI}
+_SHAPES = shape_functions()
+LINEAR, GIMP, QUADRATIC, CUBIC = (shape_named(n).code
+                                  for n in ("linear", "gimp", "quadratic", "cubic"))
+SHAPE_CODES = {s.name: s.code for s in _SHAPES}
 #: nodes per axis touched by one stencil (for CPDI: by each of the 2^dim corners)
-STENCIL_WIDTH = {LINEAR: 2, GIMP: 3, QUADRATIC: 3, CUBIC: 4, CPDI: 2}
+STENCIL_WIDTH = {s.code: s.width for s in _SHAPES}
+_WEIGHTS = {s.code: s.weights for s in _SHAPES}
 
 
 @njit(inline="always")
-def stencil_width(kind):
-    if kind == LINEAR or kind == CPDI:
-        return 2
-    if kind == CUBIC:
-        return 4
-    return 3
+def _unknown_shape():
+    raise ValueError("unknown shape function code")
 
 
-@njit  # scalar in, scalars out: LLVM inlines it (Numba-IR inlining trips its SSA check)
-def _cubic(r):
-    """Cubic B-spline and its derivative at signed distance r (cell units)."""
-    a = abs(r)
-    s = 1.0 if r >= 0.0 else -1.0
-    if a < 1.0:
-        return 2.0 / 3.0 - r * r + 0.5 * a * a * a, s * (-2.0 * a + 1.5 * a * a)
-    if a < 2.0:
-        t = 2.0 - a
-        return t * t * t / 6.0, -s * 0.5 * t * t
-    return 0.0, 0.0
-
-
-@njit
-def _gimp(r, lp):
-    """Uniform GIMP weight and derivative at signed distance r for half-width lp <= 1/2."""
-    a = abs(r)
-    s = 1.0 if r >= 0.0 else -1.0
-    if a < lp:
-        return 1.0 - (r * r + lp * lp) / (2.0 * lp), -r / lp
-    if a < 1.0 - lp:
-        return 1.0 - a, -s
-    if a < 1.0 + lp:
-        t = 1.0 + lp - a
-        return t * t / (4.0 * lp), -s * t / (2.0 * lp)
-    return 0.0, 0.0
-
-
-@njit(inline="always")
-def weights_linear(X, lp):
-    """Linear hat (thesis eqs. 63-67): (base, w, dw) for nodes base, base + 1."""
-    base = math.floor(X)
-    f = X - base
-    return base, (1.0 - f, f, 0.0, 0.0), (-1.0, 1.0, 0.0, 0.0)
-
-
-@njit(inline="always")
-def weights_quadratic(X, lp):
-    """Quadratic B-spline: nodes base .. base + 2."""
-    base = math.floor(X - 0.5)
-    f = X - base  # in [0.5, 1.5)
-    return (base, (0.5 * (1.5 - f) ** 2, 0.75 - (f - 1.0) ** 2, 0.5 * (f - 0.5) ** 2, 0.0),
-            (f - 1.5, -2.0 * (f - 1.0), f - 0.5, 0.0))
-
-
-@njit(inline="always")
-def weights_cubic(X, lp):
-    """Cubic B-spline: nodes base .. base + 3."""
-    base = math.floor(X) - 1
-    f = X - base  # in [1, 2)
-    w0, d0 = _cubic(f)
-    w1, d1 = _cubic(f - 1.0)
-    w2, d2 = _cubic(f - 2.0)
-    w3, d3 = _cubic(f - 3.0)
-    return base, (w0, w1, w2, w3), (d0, d1, d2, d3)
-
-
-@njit(inline="always")
-def weights_gimp(X, lp):
-    """Uniform GIMP with particle half-width lp (cell units): nodes base .. base + 2."""
-    base = math.floor(X - 0.5)
-    f = X - base
-    w0, d0 = _gimp(f, lp)
-    w1, d1 = _gimp(f - 1.0, lp)
-    w2, d2 = _gimp(f - 2.0, lp)
-    return base, (w0, w1, w2, 0.0), (d0, d1, d2, 0.0)
-
-
-_WEIGHTS = {LINEAR: weights_linear, GIMP: weights_gimp, QUADRATIC: weights_quadratic,
-            CUBIC: weights_cubic, CPDI: weights_linear}
-
-
-@njit
-def weights_1d(kind, X, lp):
-    """(base, w, dw) for a runtime shape-function code: weights w[k] and derivatives dw[k]
-    (per cell unit) of nodes base + k, as 4-tuples (unused entries 0) that live in registers.
-    The kernels use `weights_tagged`, which fixes the kind at compile time."""
-    if kind == LINEAR:
-        return weights_linear(X, lp)
-    if kind == QUADRATIC:
-        return weights_quadratic(X, lp)
-    if kind == CUBIC:
-        return weights_cubic(X, lp)
-    return weights_gimp(X, lp)
+stencil_width = code_switch("stencil_width", "", STENCIL_WIDTH, "return 0")
+apic_d_inverse = code_switch("apic_d_inverse", "", {s.code: float(s.apic_d_inverse)
+                                                     for s in _SHAPES}, "return 0.0")
+#: (base, w, dw) for a runtime shape-function code: weights w[k] and derivatives dw[k] (per
+#: cell unit) of nodes base + k, as 4-tuples (unused entries 0) that live in registers. The
+#: kernels use `weights_tagged`, which fixes the kind at compile time.
+weights_1d = code_switch("weights_1d", "X, lp", _WEIGHTS, "_unknown_shape()",
+                         _unknown_shape=_unknown_shape)
 
 
 def weights_tagged(kind_tag, X, lp):

@@ -1,0 +1,1 @@
+"""MPM shape functions, one module each, registered with `registry.register_shape`."""
