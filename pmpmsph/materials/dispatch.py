@@ -27,7 +27,7 @@ from ..jit import code_switch, njit
 from . import registry
 
 __all__ = ["compute_stress", "compute_stress_tagged", "material_tag", "strain_energy",
-           "strain_energy_tagged", "wave_speed"]
+           "strain_energy_tagged", "wave_speed", "wave_speed_tagged"]
 
 _MODELS = registry.models()
 
@@ -46,8 +46,8 @@ compute_stress = code_switch("compute_stress", "F, L, dt, state, par, sigma", _S
                              "_nan_stress(sigma)", _nan_stress=_nan_stress)
 strain_energy = code_switch("strain_energy", "F, state, par", _ENERGY_BY_CODE,
                             "return np.nan", np=np)
-wave_speed = code_switch("wave_speed", "par, J", {m.code: m.wave_speed for m in _MODELS},
-                         "return np.nan", np=np)
+_SPEED_BY_CODE = {m.code: m.wave_speed for m in _MODELS}
+wave_speed = code_switch("wave_speed", "par, J", _SPEED_BY_CODE, "return np.nan", np=np)
 
 
 def material_tag(codes):
@@ -99,4 +99,26 @@ def _strain_energy_tagged_typed(mtag, mtype, F, state, par):
 
     def fixed(mtag, mtype, F, state, par):
         return model(F, state, par)
+    return fixed
+
+
+def wave_speed_tagged(mtag, mtype, par, J):
+    """`wave_speed` with the type fixed at compile time when `mtag` is not empty (as
+    `compute_stress_tagged`). This body runs under NUMBA_DISABLE_JIT=1."""
+    if len(mtag) == 0:
+        return wave_speed(mtype, par, J)
+    return _SPEED_BY_CODE[len(mtag) - 1](par, J)
+
+
+@overload(wave_speed_tagged, inline="always")
+def _wave_speed_tagged_typed(mtag, mtype, par, J):
+    count = len(mtag.types)
+    if count == 0:
+        def switch(mtag, mtype, par, J):
+            return wave_speed(mtype, par, J)
+        return switch
+    model = _SPEED_BY_CODE[count - 1]
+
+    def fixed(mtag, mtype, par, J):
+        return model(par, J)
     return fixed

@@ -8,7 +8,7 @@ single-velocity-field MPM, one field per body for multi-field contact.
 import numpy as np
 
 from ...jit import njit
-from ...materials.dispatch import compute_stress_tagged, wave_speed
+from ...materials.dispatch import compute_stress_tagged, wave_speed_tagged
 from ...materials.fluid import stress_tait_of_jm1
 from ..deformation import advance
 from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
@@ -435,7 +435,7 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
                 speed = v[p, 0] * v[p, 0]
                 for a in range(1, dim):
                     speed += v[p, a] * v[p, a]
-                c = wave_speed(mtypes[mi], mparams[mi], J) + np.sqrt(speed)
+                c = wave_speed_tagged(mat_tag, mtypes[mi], mparams[mi], J) + np.sqrt(speed)
                 if not (c <= signal):  # NaN propagates (no finite dt from a broken state)
                     signal = c
             # straight into the particle's row unless a pre-stress is added (the models
