@@ -10,10 +10,12 @@ from typing import Optional
 from ..kernels.mpm.shape_functions.registry import shape_functions
 from ..kernels.sph.smoothing.registry import kernel_code, smoothing_kernels
 from ..materials.base import Material
+from ..physics.transfer_schemes import TRANSFER_SCHEMES
 
 #: `[mpm] shape` choices: the registered shape functions, in code order
 SHAPES = tuple(s.name for s in shape_functions())
-TRANSFERS = ("usl", "usf", "musl")
+#: `[mpm] transfer` choices: the transfer schemes (physics/transfer_schemes.py)
+TRANSFERS = tuple(TRANSFER_SCHEMES)
 #: how G2P hands the grid velocity back to the particles (kernels/mpm/transfers.py, affine.py)
 VELOCITY_UPDATES = ("flip", "apic", "mls")
 CONTACTS = ("single", "multi")

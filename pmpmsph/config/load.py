@@ -10,7 +10,9 @@ import dataclasses
 import tomllib
 
 from ..errors import ConfigError
+from ..kernels.mpm.shape_functions.registry import shape_named
 from ..materials import material_from_table
+from ..physics.transfer_schemes import TRANSFER_SCHEMES
 from .case import (CONTACTS, SHAPES, TRANSFERS, VELOCITY_UPDATES, Case, CouplingSpec, MPMSpec,
                    OutputSpec, ParallelSpec, TimeSpec)
 from .conditions import _boundary, _load, _prescribed
@@ -140,11 +142,11 @@ def case_from_dict(data, name="case", text=""):
         raise ConfigError(mpm_t.key("flip"), "applies to velocity_update = \"flip\" only "
                           f"(the {mpm.velocity_update} transfer has no FLIP increment)")
     if mpm.velocity_update == "mls":
-        if mpm.shape not in ("quadratic", "cubic"):
+        if shape_named(mpm.shape).apic_d_inverse == 0.0:  # (the B-splines)
             raise ConfigError(mpm_t.key("velocity_update"), "\"mls\" needs shape = "
                               f"\"quadratic\" or \"cubic\" (its gradient is D^-1 N (x_I - x_p) "
                               f"of a B-spline), not {mpm.shape!r}; \"apic\" takes any shape")
-        if mpm.transfer != "usl":
+        if not TRANSFER_SCHEMES[mpm.transfer].stress_last:
             raise ConfigError(mpm_t.key("velocity_update"), "\"mls\" is an update-stress-last "
                               f"scheme: it needs transfer = \"usl\", not {mpm.transfer!r}")
     if mpm_t.has("cpdi_reach") and mpm.shape != "cpdi":

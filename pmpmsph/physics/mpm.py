@@ -30,6 +30,7 @@ from .boundary import GridBoundaries
 from .coupling import Uncoupled
 from .grid import Grid
 from .scratch import rows_at_least
+from .transfer_schemes import TRANSFER_SCHEMES
 from ..parallel.decomposition import wrap_axis
 from ..parallel.grid_halo import GridHalo
 from ..timing import Timers
@@ -48,6 +49,7 @@ class MPMStage:
         self.kind = self.shape.code
         self.tags = static_tags(self.dim, self.kind)
         self.transfer = spec.transfer
+        self.scheme = TRANSFER_SCHEMES[spec.transfer]()  # the order of the passes
         self.flip = spec.flip
         self.affine = spec.velocity_update in ("apic", "mls")  # particles carry C
         self.mls = spec.velocity_update == "mls"
@@ -71,7 +73,7 @@ class MPMStage:
         # PIC-USL without damping needs only the updated nodal velocity, so P2G scatters
         # p + dt f into the momentum (one scatter instead of two, as Taichi's mpm88 does)
         # (an interface that needs the nodal forces apart forbids it: `attach`)
-        self.fold_force = (self.transfer == "usl" and (self.flip == 0.0 or self.affine)
+        self.fold_force = (self.scheme.stress_last and (self.flip == 0.0 or self.affine)
                            and self.damping == 0.0 and not self.multi)
         self.interface = Uncoupled()  # the coupling's hooks in the step (`attach`)
         # rows [0, n_p2g) take part in P2G and [0, n_g2p) are updated by G2P; None: all
@@ -333,7 +335,7 @@ class MPMStage:
                 bad = bad if bad >= 0 else bad2
         # max (c + |v|) of the owned rows, valid when this pass has the final velocities
         # too: USL's single pass and MUSL's second; after USF's first pass v changes again
-        if deformation and (kinematics or self.transfer == "musl"):
+        if deformation and (kinematics or self.scheme.signal_after_deformation):
             self.signal = signal
         return bad
 
@@ -363,23 +365,4 @@ class MPMStage:
 
     def _step(self, dt, time):
         self.signal = None
-        if self.transfer == "usl":
-            self._p2g(True, dt)
-            self._solve(dt, time, True)
-            return self._g2p(dt, True, True)
-        if self.transfer == "usf":
-            self._p2g(False)
-            self._solve(dt, time, False)
-            bad = self._g2p(dt, False, True)
-            self._p2g(True)
-            self._solve(dt, time, True)
-            bad2 = self._g2p(dt, True, False)
-            return bad if bad >= 0 else bad2
-        # MUSL
-        self._p2g(True)
-        self._solve(dt, time, True)
-        bad = self._g2p(dt, True, False)
-        self._p2g(False)
-        self._solve(dt, time, False)
-        bad2 = self._g2p(dt, False, True)
-        return bad if bad >= 0 else bad2
+        return self.scheme.step(self, dt, time)
