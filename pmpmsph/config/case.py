@@ -10,6 +10,7 @@ from typing import Optional
 from ..kernels.mpm.shape_functions.registry import shape_functions
 from ..kernels.sph.smoothing.registry import kernel_code, smoothing_kernels
 from ..materials.base import Material
+from ..physics.sph_integrators import SPH_INTEGRATORS as SPH_INTEGRATOR_CLASSES
 from ..physics.transfer_schemes import TRANSFER_SCHEMES
 
 #: `[mpm] shape` choices: the registered shape functions, in code order
@@ -23,7 +24,8 @@ METHODS = ("mpm", "sph")
 BC_KINDS = ("fixed", "slip", "friction")
 #: `[sph] kernel` choices: the registered smoothing kernels, in code order
 SPH_KERNELS = tuple(k.name for k in smoothing_kernels())
-SPH_INTEGRATORS = ("verlet", "predictor_corrector", "rk3")
+#: `[sph] integrator` choices (physics/sph_integrators.py; "leapfrog" is Verlet)
+SPH_INTEGRATORS = tuple(SPH_INTEGRATOR_CLASSES)
 SPH_FORMULATIONS = ("updated", "total")
 
 

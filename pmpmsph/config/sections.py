@@ -8,6 +8,7 @@ import contextvars
 import math
 
 from ..errors import ConfigError
+from ..physics.sph_integrators import SPH_INTEGRATORS as SPH_INTEGRATOR_CLASSES
 from ..scene.geometry import Box, Disc, Polygon
 from ..scene.mesh import MeshGeometry, mesh_geometry
 from .case import (METHODS, SPH_FORMULATIONS, SPH_INTEGRATORS, SPH_KERNELS, BodySpec,
@@ -167,9 +168,8 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         raise ConfigError(t.key("h"), f"{h:g} is not in (0.5, 4] x the particle spacing "
                           f"{spacing:g} (below, the kernel support 2h holds no neighbour; "
                           "above, every particle has hundreds)")
-    integrator = t.string("integrator", "predictor_corrector",
-                          choices=SPH_INTEGRATORS + ("leapfrog",))
-    integrator = "verlet" if integrator == "leapfrog" else integrator
+    integrator = t.string("integrator", "predictor_corrector", choices=SPH_INTEGRATORS)
+    integrator = SPH_INTEGRATOR_CLASSES[integrator].name  # (an alias: its canonical name)
     visc = t.sub("viscosity", {})
     av_alpha = visc.number("alpha", 1.0, min=0.0)
     av_beta = visc.number("beta", 1.0, min=0.0)

@@ -48,6 +48,7 @@ from ..parallel.decomposition import wrap_axis
 from ..particles import FieldSpec
 from .hydrostatic import fluid_columns
 from .scratch import rows_at_least
+from .sph_integrators import SPH_INTEGRATORS
 from ..timing import Timers
 
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
@@ -109,7 +110,7 @@ class SPHStage:
                           else None)
         self.want_L = not all(m.fluid and (m.viscosity == 0.0 or pw)
                               for m, pw in zip(mats, pairwise))
-        self.integrator = spec.integrator
+        self.integrator = SPH_INTEGRATORS[spec.integrator]  # (sph_integrators.py)
         self.mtypes, self.mparams = materials
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
@@ -159,7 +160,7 @@ class SPHStage:
     @staticmethod
     def fields(case):
         """Fields the SPH stage needs beyond the core ones (DESIGN.md §2)."""
-        multi = case.sph.integrator in ("predictor_corrector", "rk3")
+        multi = SPH_INTEGRATORS[case.sph.integrator].multi_stage
         out = [
             FieldSpec("rho", (), halo=True, output=True),
             FieldSpec("acc", ("dim",)),
@@ -516,37 +517,7 @@ class SPHStage:
         if not self.evaluated:
             self.initialise()
         m0 = self._mstate(n).copy()
-        bad = -1
-        if self.integrator == "verlet":
-            tag, meth = self.dim_tag, p["method"]
-            with self.timers.phase("integrate"):
-                if not kicked:
-                    add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
-                self._drift(n, 0.5 * dt)
-            self.kinematics()
-            with self.timers.phase("integrate"):
-                cayley_update(tag, n, meth, dt, p["rho"], p["F"], p["drho"], p["L"])
-                self._drift(n, 0.5 * dt)
-            bad = self.stress(dt, m0)
-            self.evaluate()
-            with self.timers.phase("integrate"):
-                add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
-        elif self.integrator == "predictor_corrector":
-            self._advance(0.0, 1.0, 0.5 * dt, save=True)  # predictor with the last rates
-            self.stress(0.5 * dt, m0)
-            self.evaluate()
-            self._advance(1.0, 0.0, dt)           # corrector from the step start
-            bad = self.stress(dt, m0)
-        else:  # TVD-RK3 (Shu & Osher)
-            for c0, c1, frac in ((0.0, 1.0, 1.0), (0.75, 0.25, 0.5), (1.0 / 3.0, 2.0 / 3.0, 1.0)):
-                if c0 > 0.0:
-                    self.evaluate()
-                self._advance(c0, c1, c1 * dt, save=c0 == 0.0)
-                bad = self.stress(frac * dt, m0)
-                if bad >= 0:
-                    break
-            if bad < 0:
-                self.evaluate()  # rates at the new state start the next step
+        bad = self.integrator.updated(self, dt, m0, kicked)
         if self.shift_coef > 0.0 and bad < 0:
             with self.timers.phase("integrate"):
                 shift_positions(self.dim_tag, n, p["method"], p["mat"], self.fluid, p["x"],

@@ -205,26 +205,7 @@ class TLSPHStage(SPHStage):
             self.initialise()
         if "mstate0" in p:  # commit the material state of the last step
             p["mstate0"][...] = p["mstate"]
-        if self.integrator == "verlet":
-            tag, meth = self.dim_tag, p["method"]
-            with self.timers.phase("integrate"):
-                add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
-                add_scaled(tag, n, meth, dt, p["x"], p["v"])  # drift
-            self.evaluate(dt)
-            with self.timers.phase("integrate"):
-                add_scaled(tag, n, meth, 0.5 * dt, p["v"], p["acc"])  # kick
-        elif self.integrator == "predictor_corrector":
-            self._advance(0.0, 1.0, 0.5 * dt, save=True)
-            self.evaluate(0.5 * dt)
-            self._advance(1.0, 0.0, dt)
-            self.evaluate(dt)
-        else:  # TVD-RK3
-            self._advance(0.0, 1.0, dt, save=True)
-            self.evaluate(dt)
-            self._advance(0.75, 0.25, 0.25 * dt)
-            self.evaluate(0.5 * dt)
-            self._advance(1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0 * dt)
-            self.evaluate(dt)
+        self.integrator.total(self, dt)
         bad = self._bad
         if bad < 0:
             bad = first_outside(self.dim, n, p["x"], self.lo, self.hi)
