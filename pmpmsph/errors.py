@@ -3,9 +3,25 @@
 `ConfigError` stops a run before step 1 (exit status 2) and names the TOML key;
 `RunError` stops a running simulation (exit status 3) and names step, particle and cause.
 """
+import math
 
 EXIT_CONFIG = 2
 EXIT_RUNTIME = 3
+
+
+def is_finite(v):
+    """A finite float or an int that fits a float (TOML integers have no size limit, and
+    math.isfinite raises OverflowError beyond 1.8e308)."""
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
+
+
+def short_repr(v):
+    """repr of a value, shortened (an integer of 400 digits is not a useful message)."""
+    text = repr(v)
+    return text if len(text) <= 40 else f"{text[:20]}...({len(text)} characters)"
 
 
 class ConfigError(Exception):

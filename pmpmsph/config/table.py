@@ -3,31 +3,16 @@
 Every getter validates and raises `ConfigError(key, reason)`; `finish()` rejects keys that no
 getter asked for, so a misspelt key is an error rather than silently ignored.
 """
-import math
 import numbers
 
-from ..errors import ConfigError
+from ..errors import ConfigError, is_finite
+from ..errors import short_repr as _short
 
 _MISSING = object()
 
 
 def _is_number(v):
     return isinstance(v, numbers.Real) and not isinstance(v, bool)
-
-
-def is_finite(v):
-    """A finite float or an int that fits a float (TOML integers have no size limit, and
-    math.isfinite raises OverflowError beyond 1.8e308)."""
-    try:
-        return math.isfinite(v)
-    except OverflowError:
-        return False
-
-
-def _short(v):
-    """repr of a value, shortened (an integer of 400 digits is not a useful message)."""
-    text = repr(v)
-    return text if len(text) <= 40 else f"{text[:20]}...({len(text)} characters)"
 
 
 class Table:

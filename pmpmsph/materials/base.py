@@ -17,12 +17,13 @@ and defines `params(dim)`, a float64 vector of length NPAR with rho0 at PAR_RHO0
 """
 import math
 import numbers
-from dataclasses import fields
+from dataclasses import dataclass, fields
 from typing import ClassVar
 
 import numpy as np
 
-from ..errors import ConfigError
+from ..errors import ConfigError, is_finite
+from ..errors import short_repr as _short
 from .codes import NPAR
 
 
@@ -43,25 +44,12 @@ def poisson(name, value):
         raise ConfigError(name, f"Poisson ratio must be > -1, got {value!r}")
 
 
-def _isfinite(v):
-    """math.isfinite that takes integers beyond the float range (TOML's) as not finite."""
-    try:
-        return math.isfinite(v)
-    except OverflowError:
-        return False
-
-
-def _short(v):
-    text = repr(v)
-    return text if len(text) <= 40 else f"{text[:20]}...({len(text)} characters)"
-
-
 def finite_numbers(obj):
     for f in fields(obj):
         v = getattr(obj, f.name)
         if not isinstance(v, numbers.Real) or isinstance(v, bool):
             raise ConfigError(f.name, f"expected a number, got {v!r}")
-        if not _isfinite(v):
+        if not is_finite(v):
             raise ConfigError(f.name, f"must be a finite number, got {_short(v)}")
 
 
@@ -92,14 +80,18 @@ class Material:
         return par
 
 
+@dataclass(frozen=True)
 class IsotropicElastic(Material):
-    """Common part of the (E, nu, rho) solids.
+    """Common part of the (E, nu, rho) solids (their fields, checks and parameters).
 
     Parameter vector: ``[lambda, mu, rho0, E, nu, 0, 0, 0]`` with the Lame constants
     lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)).  For ``dim == 1`` the body is
     a uniaxial-stress bar: lambda = 0, mu = E/2 (so sigma_xx = E eps for small strain; nu is
     ignored in 1D)."""
 
+    E: float
+    nu: float
+    rho: float
     required: ClassVar[tuple] = ("E", "nu", "rho")
     stiffness: ClassVar[str] = "E"
 
@@ -191,7 +183,7 @@ def material_from_table(table, key, dim, models):
         v = table[f]
         if not isinstance(v, numbers.Real) or isinstance(v, bool):
             raise ConfigError(f"{key}.{f}", f"expected a number, got {v!r}")
-        if not _isfinite(v):
+        if not is_finite(v):
             raise ConfigError(f"{key}.{f}", f"must be a finite number, got {_short(v)}")
         values[f] = float(v)
     try:

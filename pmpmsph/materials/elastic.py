@@ -202,9 +202,6 @@ class LinearElastic(IsotropicElastic):
     """Small-strain linear elasticity, sigma = lambda tr(eps) I + 2 G eps (seed 000, eq. 3.11),
     eps = sym(F) - I.  Parameters: see `IsotropicElastic` (``[lambda, mu, rho0, E, nu, 0...]``)."""
 
-    E: float
-    nu: float
-    rho: float
     type_code: ClassVar[int] = LINEAR_ELASTIC
     model: ClassVar[str] = "linear_elastic"
 
@@ -214,9 +211,6 @@ class StVenantKirchhoff(IsotropicElastic):
     """St Venant-Kirchhoff, S = lambda tr(E) I + 2 mu E (seed 003, eq. 46).
     Parameters ``[lambda, mu, rho0, E, nu, 0, 0, 0]`` (1D: lambda = 0, mu = E/2)."""
 
-    E: float
-    nu: float
-    rho: float
     type_code: ClassVar[int] = STVK
     model: ClassVar[str] = "stvk"
     aliases: ClassVar[tuple] = ("st_venant_kirchhoff",)
@@ -227,9 +221,6 @@ class NeoHookean(IsotropicElastic):
     """Neo-Hookean, sigma = mu/J (F F^T - I) + lambda/J ln J I (seed 003, eq. 47).
     Parameters ``[lambda, mu, rho0, E, nu, 0, 0, 0]`` (1D: lambda = 0, mu = E/2)."""
 
-    E: float
-    nu: float
-    rho: float
     type_code: ClassVar[int] = NEO_HOOKEAN
     model: ClassVar[str] = "neo_hookean"
 

@@ -32,20 +32,21 @@ MOONEY_RIVLIN = 6
 
 
 @njit(inline="always")
+def _isochoric_b(F):
+    """J and B-bar = J^(-2/3) F F^T as a 6-tuple."""
+    J = det3(F)
+    s = inv_cbrt_sq(J)
+    bxx, byy, bzz, bxy, byz, bxz = left_cauchy_green(F)
+    return J, s * bxx, s * byy, s * bzz, s * bxy, s * byz, s * bxz
+
+
+@njit(inline="always")
 def stress_mooney_rivlin(F, L, dt, state, par, sigma):
     """Cauchy stress of the module docstring."""
     c10 = par[0]
     c01 = par[1]
     k = par[3]
-    J = det3(F)
-    s = inv_cbrt_sq(J)
-    bxx, byy, bzz, bxy, byz, bxz = left_cauchy_green(F)
-    bxx *= s
-    byy *= s
-    bzz *= s
-    bxy *= s
-    byz *= s
-    bxz *= s
+    J, bxx, byy, bzz, bxy, byz, bxz = _isochoric_b(F)
     # B-bar^2
     qxx = bxx * bxx + bxy * bxy + bxz * bxz
     qyy = bxy * bxy + byy * byy + byz * byz
@@ -70,12 +71,9 @@ def energy_mooney_rivlin(F, state, par):
     c10 = par[0]
     c01 = par[1]
     k = par[3]
-    J = det3(F)
-    s = inv_cbrt_sq(J)
-    bxx, byy, bzz, bxy, byz, bxz = left_cauchy_green(F)
-    i1 = s * (bxx + byy + bzz)
-    tr_b2 = s * s * (bxx * bxx + byy * byy + bzz * bzz
-                     + 2.0 * (bxy * bxy + byz * byz + bxz * bxz))
+    J, bxx, byy, bzz, bxy, byz, bxz = _isochoric_b(F)
+    i1 = bxx + byy + bzz
+    tr_b2 = bxx * bxx + byy * byy + bzz * bzz + 2.0 * (bxy * bxy + byz * byz + bxz * bxz)
     i2 = 0.5 * (i1 * i1 - tr_b2)
     return c10 * (i1 - 3.0) + c01 * (i2 - 3.0) + 0.5 * k * (J - 1.0) * (J - 1.0)
 

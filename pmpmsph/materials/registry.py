@@ -13,14 +13,14 @@ stored energy, wave speed). From the registry are generated: the case file's cho
 specialisations (`pmpmsph.materials.dispatch`), the energy of the diagnostics
 (`kernels.diagnostics`).
 
-`load_laws()` imports every module of this package that is not part of its machinery, so a
+`models()` imports every module of this package that is not part of its machinery, so a
 new material is one new file (and its test): nothing else lists the models.
 
 Plain Python: importing this module does not import numba.
 """
 from dataclasses import dataclass
 
-from ..plugins import import_all
+from ..plugins import Registry
 
 #: modules of the package that hold no law
 _MACHINERY = {"registry", "base", "codes", "dispatch", "tensor"}
@@ -49,39 +49,12 @@ class Model:
         return self.config.type_code
 
 
-_BY_CODE = {}
-
-
-def register(model):
-    """Add `model`; its type code and names must be new."""
-    cls = model.config
-    if model.code in _BY_CODE and _BY_CODE[model.code].config is not cls:
-        raise ValueError(f"material type code {model.code} of {model.name!r} is taken by "
-                         f"{_BY_CODE[model.code].name!r}")
-    taken = {n: m.name for m in _BY_CODE.values() if m.config is not cls for n in names_of(m)}
-    for n in names_of(model):
-        if n in taken:
-            raise ValueError(f"material name {n!r} of {model.name!r} is taken by {taken[n]!r}")
-    _BY_CODE[model.code] = model
-    return model
-
-
 def names_of(model):
     """The canonical name and the aliases a case file may use for `model`."""
     return (model.name,) + tuple(model.config.aliases)
 
 
-def load_laws():
-    """Import every law module of the package (each registers its models); idempotent."""
-    import_all(__package__, __file__, _MACHINERY)
-
-
-def models():
-    """The registered models in type-code order."""
-    load_laws()
-    return [_BY_CODE[c] for c in sorted(_BY_CODE)]
-
-
-def model_of_code(code):
-    load_laws()
-    return _BY_CODE[code]
+_MODELS = Registry("material type", __package__, __file__, _MACHINERY, names_of)
+#: add a model (its type code and names must be new); the registered models in code order;
+#: the model of a type code
+register, models, model_of_code = _MODELS.register, _MODELS.entries, _MODELS.of_code

@@ -23,12 +23,12 @@ Traits:
                   at which two bodies' particles first share a node (`physics.mpm`), with
                   lp = 1/4; default `weights`
 
-`load_shapes()` imports every module of this package that is not this one, so a new shape
+`shape_functions()` imports every module of this package that is not this one, so a new shape
 is one new file (and its test). Plain Python: importing it does not import numba.
 """
 from dataclasses import dataclass
 
-from ....plugins import import_all
+from ....plugins import Registry
 
 
 @dataclass(frozen=True)
@@ -48,33 +48,15 @@ class ShapeFunction:
         return self.weights if self.gap_weights is None else self.gap_weights
 
 
-_BY_CODE = {}
+_SHAPES = Registry("shape function", __package__, __file__)
 
 
 def register_shape(shape):
-    """Add `shape`; its code and name must be new."""
-    for other in _BY_CODE.values():
-        if other.name != shape.name and other.code == shape.code:
-            raise ValueError(f"shape function code {shape.code} of {shape.name!r} is taken "
-                             f"by {other.name!r}")
-        if other.name == shape.name and other.code != shape.code:
-            raise ValueError(f"shape function name {shape.name!r} is taken")
+    """Add `shape`; its code and name must be new, its stencil at most 4 nodes wide."""
     if not 1 <= shape.width <= 4:
         raise ValueError(f"shape function {shape.name!r}: width {shape.width} not in 1..4")
-    _BY_CODE[shape.code] = shape
-    return shape
+    return _SHAPES.register(shape)
 
 
-def load_shapes():
-    import_all(__package__, __file__, ("registry",))
-
-
-def shape_functions():
-    """The registered shape functions in code order."""
-    load_shapes()
-    return [_BY_CODE[c] for c in sorted(_BY_CODE)]
-
-
-def shape_named(name):
-    """The shape function called `name` (KeyError if none is)."""
-    return {s.name: s for s in shape_functions()}[name]
+#: the registered shape functions in code order; the one called `name` (KeyError if none is)
+shape_functions, shape_named = _SHAPES.entries, _SHAPES.named

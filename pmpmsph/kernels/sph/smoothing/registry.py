@@ -7,12 +7,12 @@ and `kernels.sph.kernel_functions` generates the switch the SPH kernels call fro
 as `[sph] kernel`'s choice list is (`config.case.SPH_KERNELS`). Every kernel reaches 2h
 (`SUPPORT`): the neighbour search and the halo widths are built on it.
 
-`load_kernels()` imports every module of this package that is not this one, so a new
+`smoothing_kernels()` imports every module of this package that is not this one, so a new
 kernel is one new file (and its test). Plain Python: importing it does not import numba.
 """
 from dataclasses import dataclass
 
-from ....plugins import import_all
+from ....plugins import Registry
 
 #: support radius in units of h (every registered kernel)
 SUPPORT = 2.0
@@ -29,31 +29,11 @@ class SmoothingKernel:
     dwdr: object
 
 
-_BY_CODE = {}
-
-
-def register_kernel(kernel):
-    """Add `kernel`; its code and name must be new."""
-    for other in _BY_CODE.values():
-        if other.name != kernel.name and other.code == kernel.code:
-            raise ValueError(f"SPH kernel code {kernel.code} of {kernel.name!r} is taken by "
-                             f"{other.name!r}")
-        if other.name == kernel.name and other.code != kernel.code:
-            raise ValueError(f"SPH kernel name {kernel.name!r} is taken")
-    _BY_CODE[kernel.code] = kernel
-    return kernel
-
-
-def load_kernels():
-    import_all(__package__, __file__, ("registry",))
-
-
-def smoothing_kernels():
-    """The registered kernels in code order."""
-    load_kernels()
-    return [_BY_CODE[c] for c in sorted(_BY_CODE)]
+_KERNELS = Registry("SPH kernel", __package__, __file__)
+#: add a kernel (its code and name must be new); the registered kernels in code order
+register_kernel, smoothing_kernels = _KERNELS.register, _KERNELS.entries
 
 
 def kernel_code(name):
     """The code of the kernel called `name` (KeyError if none is)."""
-    return {k.name: k.code for k in smoothing_kernels()}[name]
+    return _KERNELS.named(name).code
