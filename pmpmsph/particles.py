@@ -5,7 +5,7 @@ migrated, copied to halos and written. Owned particles are rows [0, n_owned); ha
 (when a later stage asks for them) follow and are never written back.
 """
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional
 
 import numpy as np
@@ -85,8 +85,6 @@ class ParticleSet:
     def copy_to_halo(self, name: str) -> None:
         """Also copy an already declared field to halo particles (e.g. vol0 for
         total-Lagrangian SPH, whose neighbours sum reference volumes)."""
-        from dataclasses import replace
-
         self.specs[name] = replace(self.specs[name], halo=True)
 
     def deformation(self, n: Optional[int] = None) -> np.ndarray:

@@ -10,6 +10,8 @@ import sys
 
 import numpy as np
 
+from .io.diagnostics import read_diagnostics
+
 
 def _csv_of(run):
     return run if run.endswith(".csv") else os.path.join(run, "diagnostics.csv")
@@ -17,12 +19,10 @@ def _csv_of(run):
 
 def plot_diagnostics(run, out=None):
     """Write the figure; returns its path."""
-    import matplotlib
+    import matplotlib  # noqa: PLC0415 - optional, for pictures only
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .io.diagnostics import read_diagnostics
+    import matplotlib.pyplot as plt  # noqa: PLC0415 - after matplotlib.use
 
     path = _csv_of(run)
     d = read_diagnostics(path)

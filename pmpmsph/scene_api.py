@@ -12,6 +12,7 @@ import copy
 from typing import TYPE_CHECKING, Any
 
 from .config import case_from_dict
+from .config.load import apply_overrides
 
 if TYPE_CHECKING:  # (annotations only: simulation imports the whole solver)
     from .config.case import Case
@@ -43,8 +44,6 @@ class Scene:
 
     def set(self, key: str, value: Any) -> Scene:
         """Set a dotted key, e.g. ``scene.set("mpm.shape", "cubic")``."""
-        from .config.load import apply_overrides
-
         apply_overrides(self.data, [(key, value)])
         return self
 
@@ -52,6 +51,6 @@ class Scene:
         return case_from_dict(self.data, name=name)
 
     def simulation(self, **kwargs: Any) -> Simulation:
-        from .simulation import Simulation
+        from .simulation import Simulation  # noqa: PLC0415 - keeps `import pmpmsph` free of the solver
 
         return Simulation(self.case(), **kwargs)

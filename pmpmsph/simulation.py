@@ -14,9 +14,11 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
-from .config.case import Case
-from .build import build_particles, material_arrays, sph_stage_class
+from .config.case import Case, GridSpec
+from .initial_particles import build_particles, material_arrays, sph_stage_class
 from .errors import ConfigError, RunError
+from .io.checkpoint import STOP
+from .io.folders import check_output_folder
 from .io.output import Output
 from .io.restart import Restart
 from .kernels.deformation import jacobian
@@ -28,6 +30,7 @@ from .parallel.balance import LoadBalancer
 from .parallel.rebalancing import Rebalancing
 from .parallel.migration import MigrationSchedule, migrate
 from .physics.coupling import interface_for
+from .physics.hydrostatic import hydrostatic_mpm
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm import MPMStage
 from .timing import Timers
@@ -65,8 +68,6 @@ class Simulation(Output, Restart, Rebalancing):
         self.out_dir = out_dir
         self.out_key = out_key
         if write_output and out_dir is not None:  # before the work of building, and agreed
-            from .io.folders import check_output_folder
-
             self.dist.agree("output location", lambda: check_output_folder(
                 out_dir, overwrite, out_key), root_only=True)
         # seeding and the stages are local work on every rank: agreed on before any collective
@@ -94,8 +95,6 @@ class Simulation(Output, Restart, Rebalancing):
         if sph_start:
             self.sph.hydrostatic_start()
         if self.mpm is not None and (sph_start or case.mpm.hydrostatic):
-            from .physics.hydrostatic import hydrostatic_mpm
-
             hydrostatic_mpm(case, self.particles, self.materials, case.gravity, self.dist)
         self.h = min(min(case.grid.cell_size) if case.grid else np.inf,
                      case.sph.h if case.sph else np.inf)
@@ -140,8 +139,6 @@ class Simulation(Output, Restart, Rebalancing):
         the kernel support 2h instead (slab faces only, no grid is allocated)."""
         spec = case.grid
         if spec is None and case.has_sph:
-            from .config.case import GridSpec
-
             lo, hi = np.array(case.domain[0]), np.array(case.domain[1])
             cells = np.maximum(np.floor((hi - lo) / (2.0 * case.sph.h)), 1).astype(int)
             spec = GridSpec(tuple(lo), tuple((hi - lo) / cells), tuple(int(c) for c in cells))
@@ -342,8 +339,6 @@ class Simulation(Output, Restart, Rebalancing):
     def run(self, max_steps: Optional[int] = None, progress_every: Optional[float] = None,
             on_step: Optional[Callable[[Simulation], Any]] = None) -> dict[str, Any]:
         """Advance to case.time.end (or max_steps); returns a summary dict."""
-        from .io.checkpoint import STOP
-
         end = self.case.time.end
         n_global = int(self.dist.sum(self.particles.n_owned))
         diag_every = self.case.output.diagnostics_interval(n_global)

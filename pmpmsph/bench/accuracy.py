@@ -21,14 +21,14 @@ import numpy as np
 
 from ..errors import RunError
 from . import accuracy_report as report
+from .accuracy_1d import BAR, REVERSAL, SPRING, STRESS
+from .accuracy_2d import DAM, DISKS, PLATE
 from .accuracy_core import COLUMNS, cost
+from .accuracy_fluids import CAVITY, COUETTE
+from .accuracy_fsi import PLATE_FSI
+
 
 def studies():
-    from .accuracy_1d import BAR, REVERSAL, SPRING, STRESS
-    from .accuracy_2d import DAM, DISKS, PLATE
-    from .accuracy_fluids import CAVITY, COUETTE
-    from .accuracy_fsi import PLATE_FSI
-
     return [SPRING, DISKS, REVERSAL, STRESS, PLATE, BAR, DAM, CAVITY, COUETTE, PLATE_FSI]
 
 

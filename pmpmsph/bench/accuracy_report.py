@@ -3,6 +3,7 @@
 Reads back the per-scene CSVs `accuracy.run` wrote, so the report can be rebuilt from them
 alone (`python -m pmpmsph.bench accuracy --report-only`).
 """
+import csv
 import os
 import re
 import shutil
@@ -66,10 +67,10 @@ def _point(r):
 
 
 def plot_scene(path, study, rows):
-    import matplotlib
+    import matplotlib  # noqa: PLC0415 - optional, for pictures only
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # noqa: PLC0415 - after matplotlib.use
 
     groups = by_method(rows)
     colours = plt.get_cmap("tab20")(np.linspace(0, 1, max(len(groups), 2)))
@@ -99,12 +100,10 @@ def plot_series(out, study, rows, readme=False):
     each method's time series at its finest level that ran (`study["series"]`: title and
     the x and y names; the run returned {x: [...], y: [...]} as "series"); with `readme`
     the figure is copied to docs/accuracy/ too."""
-    import csv
-
-    import matplotlib
+    import matplotlib  # noqa: PLC0415 - optional, for pictures only
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # noqa: PLC0415 - after matplotlib.use
 
     spec = study["series"]
     key = study["key"]

@@ -16,18 +16,17 @@ centre, plus half a spacing). `float_run` returns the submerged fraction d/heigh
 the reference and the block's settling (its centre-of-mass vertical speed at the end over
 the impact speed sqrt(2 g drop)).
 """
+import inspect
 import math
-from typing import TYPE_CHECKING
+import time
 
 import numpy as np
 
 from pmpmsph import Scene
 
-from . import write_rows
+from ..parallel.distributor import Distributor
 from ..physics.hydrostatic import tait_hydrostatic_density
-
-if TYPE_CHECKING:
-    from ..parallel.distributor import Distributor
+from . import write_rows
 
 COMBOS = ("mpm_in_sph", "sph_in_mpm", "mpm_in_mpm", "sph_in_sph")
 RHO_F, KAPPA, GAMMA, MU, G = 997.0, 2.0e4, 7.0, 0.98, 9.81
@@ -139,16 +138,10 @@ def float_run(combo: str, dist: "Distributor | None" = None, **kw: float) -> dic
     """Run one float (one rank; `kw` as `float_scene`); returns a dict: fraction (mean over
     the last fifth of the run), reference, error (relative), settle (max |v_com| over the
     last tenth / impact speed), steps, particles."""
-    import inspect
-
-    from mpi4py import MPI
-
-    from ..parallel.distributor import Distributor
-
     call = inspect.signature(float_scene).bind(combo, **kw)
     call.apply_defaults()
     a = call.arguments  # the scene's arguments, defaults included
-    sim = float_scene(**a).simulation(dist=dist or Distributor(MPI.COMM_SELF),
+    sim = float_scene(**a).simulation(dist=dist or Distributor.serial(),
                                       write_output=False)
     block = sim.particles["body"] == 1
     mass = float(sim.particles["mass"][block].sum())
@@ -173,8 +166,6 @@ def float_run(combo: str, dist: "Distributor | None" = None, **kw: float) -> dic
 def run(args):
     """`python -m pmpmsph.bench floats`: every block of BLOCKS in every combination; a table
     and `<out>/floats.csv`."""
-    import time
-
     combos = args.combos or COMBOS
     blocks = args.blocks if args.blocks is not None else range(len(BLOCKS))
     rows = []

@@ -26,23 +26,23 @@ bytes / output-phase time, and one checkpoint (time, size, bandwidth). The page 
 flushed (os.sync, outside the timed blocks) before every block, so that the dirty pages of
 one write do not throttle the next. Writes bench_results/io.json.
 """
+import argparse
 import json
 import os
 import subprocess
 import sys
 import time
 
+import numpy as np
+
+from ..parallel.distributor import Distributor
 from .scaling import scaling_scene
 
 CONFIGS = ("none", "default", "double", "diag/step")
 
 
 def worker(argv):
-    import argparse
 
-    import numpy as np
-
-    from ..parallel.distributor import Distributor
 
     ap = argparse.ArgumentParser()
     ap.add_argument("--particles", type=int, required=True)

@@ -20,11 +20,12 @@ chosen so that w / L = 1 % (`plate_modulus`). Both bodies are damped
 of its periods, 2 pi sqrt(w / g) = 0.13 s. `python -m pmpmsph.bench plate` runs it.
 """
 import math
+import time
 
 import numpy as np
 
-from . import write_rows
 from ..scene_api import Scene
+from . import write_rows
 
 RHO_WATER = 1000.0
 G = 9.81
@@ -184,8 +185,6 @@ def settled(times, w, window=0.1):
 def run(args):
     """`python -m pmpmsph.bench plate`: each spacing of each combination; a table and
     `<out>/plate.csv`."""
-    import time
-
     rows = []
     print(f"{'combination':<12}{'spacing':>9}{'w (mm)':>9}{'EB (mm)':>9}{'error':>9}"
           f"{'Timosh.':>9}{'error':>9}{'spread':>8}{'wall s':>8}")

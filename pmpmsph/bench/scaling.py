@@ -18,6 +18,7 @@ runs at once (separate processes, no MPI between them). Their slowdown is what t
 this machine lose to each other through shared caches and memory bandwidth alone, so
 T(alone) / T(co-run) bounds the 2-rank efficiency a bandwidth-bound step can reach here.
 """
+import argparse
 import json
 import math
 import os
@@ -25,7 +26,11 @@ import subprocess
 import sys
 import time
 
+from ..config.load import load_case_file
+from ..parallel.distributor import Distributor
+from ..parallel.migration import migrate
 from ..scene_api import Scene
+from ..simulation import Simulation
 
 PHASES = ("p2g", "grid", "g2p", "halo", "migration", "balance", "output")
 COMPUTE = ("p2g", "grid", "g2p")
@@ -70,8 +75,6 @@ def coupled_dam_case(spacing):
     1.3 x 2 spacings). Kept at the case's 0.08 m they would grow to 20 layers at spacing 0.004,
     a third of the particles and more than a third of the SPH work spent deep inside walls
     that no fluid particle reaches."""
-    from ..config.load import load_case_file
-
     t = WALL_LAYERS * spacing
     sets = [(f"bodies[{i}].spacing", spacing) for i in range(5)]
     sets += [("bodies[2].min", [0.0, -t]),                 # floor
@@ -81,11 +84,6 @@ def coupled_dam_case(spacing):
 
 
 def worker(argv):
-    import argparse
-
-    from ..parallel.distributor import Distributor
-    from ..parallel.migration import migrate
-    from ..simulation import Simulation
 
     ap = argparse.ArgumentParser()
     ap.add_argument("--scene", default="column", choices=sorted(SCENES))

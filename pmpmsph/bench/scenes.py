@@ -3,9 +3,11 @@
 Shared by the accuracy bench (`bench/accuracy.py`) and the tests (tests/parallel/scenes.py
 re-exports them), so a scene is defined once. The defaults are the set-ups the tests pin.
 """
+from pathlib import Path
+
 import numpy as np
 
-from pmpmsph import Scene
+from pmpmsph import Scene, load_case_file
 
 COPPER = dict(model="linear_elastic", E=128e9, nu=0.3, rho=8790.0)
 
@@ -141,9 +143,6 @@ def coupled_stress_bar(h=0.1, transfer="musl", alpha=0.0):
 
 def _case_file(name, overrides):
     """A case of the repository's cases/ folder with `--set`-style overrides."""
-    from pathlib import Path
-
-    from pmpmsph import load_case_file
 
     path = Path(__file__).resolve().parents[2] / "cases" / name
     return load_case_file(path, overrides=overrides)
@@ -173,8 +172,6 @@ def vibrating_bar_case(refine=1, shape="gimp", transfer="usl", end=20.0):
 
 def mode_velocity(sim):
     """First axial mode of the fixed-free bar, v = v0 sin(beta x), beta = pi / (2 L)."""
-    import numpy as np
-
     x = sim.particles["x"][:, 0]
     sim.particles["v"][:, 0] = BAR_V0 * np.sin(np.pi / (2 * BAR_L) * x)
 

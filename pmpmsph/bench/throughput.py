@@ -14,13 +14,12 @@ WCSPH): cases/sph_dam_break.toml at the same dx, h = 1.3 dx, c0, alpha and integ
 (predictor-corrector), timed from the state after `warmup` steps; all particles (water and
 wall) count, as in PySPH's figure.
 """
+import os
 import time
-from typing import TYPE_CHECKING
 
+from ..config import load_case_file
 from ..scene_api import Scene
-
-if TYPE_CHECKING:
-    from ..simulation import Simulation
+from ..simulation import Simulation
 
 
 def mpm_peer_scene(n_grid, shape="quadratic", transfer="usl", dim=2):
@@ -63,10 +62,6 @@ def bench_mpm(n_grid: int = 128, steps: int = 400, repeat: int = 3, shape: str =
 
 
 def bench_small(steps: int = 20000) -> dict:
-    from ..config import load_case_file
-    from ..simulation import Simulation
-    import os
-
     here = os.path.dirname(os.path.abspath(__file__))
     case = load_case_file(os.path.join(here, "..", "..", "cases", "spring_1d.toml"))
     sim = Simulation(case)
@@ -76,10 +71,6 @@ def bench_small(steps: int = 20000) -> dict:
 
 
 def bench_sph(dx: float = 0.02, steps: int = 500, repeat: int = 3, warmup: int = 20) -> dict:
-    import os
-
-    from ..config import load_case_file
-    from ..simulation import Simulation
 
     here = os.path.dirname(os.path.abspath(__file__))
     path = os.path.join(here, "..", "..", "cases", "sph_dam_break.toml")

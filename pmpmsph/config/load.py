@@ -7,6 +7,7 @@ and exit status 2 on every rank.
 """
 import copy
 import dataclasses
+import os
 import tomllib
 
 from ..errors import ConfigError
@@ -75,8 +76,6 @@ def load_case_text(text, name="case", overrides=(), base_dir=None):
 
 
 def load_case_file(path, overrides=()):
-    import os
-
     try:
         with open(path, encoding="utf-8-sig") as fh:  # -sig: a byte-order mark is fine
             text = fh.read()
@@ -103,8 +102,6 @@ def _folder(t, key, default):
     """A folder the case writes to: relative and inside the current directory tree. (The
     command line's --out is the user's explicit choice; a case file must not write
     elsewhere.)"""
-    import os
-
     path = t.string(key, default)
     norm = os.path.normpath(path) if path else ""
     if (not path or os.path.isabs(path) or os.path.splitdrive(path)[0] or "\0" in path

@@ -3,6 +3,7 @@ slice write that output and checkpoints share (io/snapshots.py, io/checkpoint.py
 import glob
 import os
 import re
+from importlib.metadata import version
 
 import h5py
 import numpy as np
@@ -18,11 +19,9 @@ TOPOLOGY = "xdmf/polyvertex"
 def code_version():
     """Installed pmpmsph version (or 'unknown' when running from an uninstalled tree)."""
     try:
-        from importlib.metadata import version
-
         return version("pmpmsph")
     except Exception:  # noqa: BLE001 - any failure just means "not installed"
-        import pmpmsph
+        import pmpmsph  # noqa: PLC0415 - the package itself, a circle at import time
 
         return getattr(pmpmsph, "__version__", "unknown")
 

@@ -12,7 +12,11 @@ import os
 
 import numpy as np
 
-from ..errors import ConfigError
+from ..errors import ConfigError, RunStopped
+from .checkpoint import read_header, read_rows, signal_name, write_checkpoint
+from .diagnostics import DIAG_COLUMNS, DiagnosticsCSV, truncate_rows
+from .h5files import code_version
+from .snapshots import SnapshotWriter
 
 log = logging.getLogger("pmpmsph")
 
@@ -30,8 +34,6 @@ class Restart:
         """Write the whole state (collective): every migrating particle field (owned rows),
         time, step, dt, slab faces, next snapshot time and the case. Returns the path, or
         None when there is nowhere to write (no output folder and no `path`)."""
-        from .checkpoint import write_checkpoint
-
         path = path or self.checkpoint_path()
         if path is None:
             return None
@@ -68,9 +70,6 @@ class Restart:
 
     def _stop_on_signal(self, signum):
         """A signal asked to stop: snapshot + checkpoint of this step, close, RunStopped."""
-        from ..errors import RunStopped
-        from .checkpoint import signal_name
-
         if self.writer is not None and self._last_snapshot_step != self.step_count:
             self.write_snapshot()
         path = self.write_checkpoint() if self._last_checkpoint_step != self.step_count \
@@ -84,8 +83,6 @@ class Restart:
         step, dt and the snapshot schedule. With the checkpoint's rank count its slab faces
         are taken over; otherwise the load balancer (if any) balances the restored particles.
         A checkpoint that does not fit this case is a ConfigError on '--restart'."""
-        from .checkpoint import read_header, read_rows
-
         head = self._agree("--restart", lambda: read_header(path), root_only=True)
         p = self.particles
         names = p.fields(migrate=True)
@@ -174,10 +171,6 @@ class Restart:
         """Output of a restarted run (after `restore_checkpoint`): continue particles.h5 and
         diagnostics.csv in `out_dir` if present (snapshots after the restart step and rows
         from it on are dropped first), start new files otherwise (or with `overwrite`)."""
-        from .diagnostics import DIAG_COLUMNS, DiagnosticsCSV, truncate_rows
-        from .h5files import code_version
-        from .snapshots import SnapshotWriter
-
         self.out_dir = out_dir
         h5 = os.path.join(out_dir, "particles.h5")
         csv = os.path.join(out_dir, "diagnostics.csv")

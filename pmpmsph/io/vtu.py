@@ -22,7 +22,7 @@ def _h5_of(run):
 
 def snapshot_mesh(data):
     """meshio.Mesh of one snapshot's fields (x of shape (n, 3) required)."""
-    import meshio
+    import meshio  # noqa: PLC0415 - optional, for .vtu only
 
     x = np.asarray(data["x"], dtype=np.float64)
     n = len(x)
@@ -40,7 +40,7 @@ def snapshot_mesh(data):
 
 def export_vtu(run, out=None, step=None):
     """Write the VTU files; returns their paths. `step`: only the snapshot of that step."""
-    import meshio
+    import meshio  # noqa: PLC0415 - optional, for .vtu only
 
     h5 = _h5_of(run)
     infos = list_snapshots(h5)

@@ -4,6 +4,7 @@
 solver needs on plain numbers and numpy arrays. It is the only place outside `parallel/`
 that touches mpi4py, and user code never sees a communicator.
 """
+import hashlib
 import os
 
 import numpy as np
@@ -15,14 +16,29 @@ from ..errors import ConfigError
 AGREEMENT_PLACES = ("case", "output location", "build", "time", "output files", "restart")
 
 
-def _world():
-    from mpi4py import MPI
+def _mpi():
+    """mpi4py's MPI module, imported at first use (importing it initialises MPI)."""
+    from mpi4py import MPI  # noqa: PLC0415 - see the docstring
 
-    return MPI.COMM_WORLD
+    return MPI
+
+
+def _world():
+    return _mpi().COMM_WORLD
+
+
+def wait_all(requests):
+    """Complete non-blocking sends and receives (the halo and migration exchanges)."""
+    _mpi().Request.Waitall(requests)
 
 
 class Distributor:
     """MPI context of a run: rank, size, reductions, exscan, broadcast, error agreement."""
+
+    @classmethod
+    def serial(cls):
+        """A distributor of this process alone (MPI.COMM_SELF): one rank whatever the launch."""
+        return cls(_mpi().COMM_SELF)
 
     def __init__(self, comm=None):
         self.comm = _world() if comm is None else comm
@@ -38,7 +54,7 @@ class Distributor:
         """Global sum of a number or numpy array (same shape on every rank)."""
         if self.size == 1:
             return value
-        from mpi4py import MPI
+        MPI = _mpi()
 
         if np.isscalar(value):
             return self.comm.allreduce(value, op=MPI.SUM)
@@ -50,14 +66,14 @@ class Distributor:
     def min(self, value):
         if self.size == 1:
             return value
-        from mpi4py import MPI
+        MPI = _mpi()
 
         return self.comm.allreduce(value, op=MPI.MIN)
 
     def max(self, value):
         if self.size == 1:
             return value
-        from mpi4py import MPI
+        MPI = _mpi()
 
         return self.comm.allreduce(value, op=MPI.MAX)
 
@@ -67,7 +83,7 @@ class Distributor:
         arr = np.ascontiguousarray(values, dtype=np.float64)
         if self.size == 1:
             return arr
-        from mpi4py import MPI
+        MPI = _mpi()
 
         out = np.empty_like(arr)
         self.comm.Allreduce(arr, out, op=MPI.MAX)
@@ -81,7 +97,7 @@ class Distributor:
         """Exclusive prefix sum of an integer over ranks (offset of this rank's slice)."""
         if self.size == 1:
             return 0
-        from mpi4py import MPI
+        MPI = _mpi()
 
         out = self.comm.exscan(int(count), op=MPI.SUM)
         return 0 if out is None else int(out)
@@ -167,8 +183,6 @@ JIT_SOURCES = ("kernels", "materials", "jit.py")
 def _source_digest():
     """Hash of the compiled sources: Numba's cache only notices changes in a kernel's own
     file, not in the kernels it calls, so the cache directory is keyed by all of them."""
-    import hashlib
-
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     h = hashlib.sha1()
     for entry in JIT_SOURCES:

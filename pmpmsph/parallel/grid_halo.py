@@ -23,6 +23,8 @@ slab is at least two ghost widths thick; otherwise (`pairwise` False, the same o
 """
 import numpy as np
 
+from .distributor import wait_all
+
 TAG_REDUCE = 11
 TAG_BCAST = 12
 TAG_SUM = 13
@@ -72,8 +74,6 @@ class GridHalo:
         routes = self.routes[name]
         if not routes:
             return
-        from mpi4py import MPI
-
         key = (name, tuple(a.shape for a in arrays))
         bufs = self._buffers.get(key)
         if bufs is None:
@@ -93,7 +93,7 @@ class GridHalo:
             reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag + 100 * (1 - side)))
             reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=tag + 100 * side))
             self.bytes_sent += sendbuf.nbytes
-        MPI.Request.Waitall(reqs)
+        wait_all(reqs)
         for (_, _, in_sl, _), (_, recvbuf) in zip(routes, bufs):
             pos = 0
             for a in arrays:

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import RunError
 from ..kernels.partition import max_abs_column, slab_leavers
+from .distributor import wait_all
 
 TAG_COUNT = 21
 TAG_DATA = 22
@@ -60,8 +61,6 @@ def migrate(decomposition, particles, step=0, hop=False):
     dec = decomposition
     if dec.size == 1:
         return 0, 0
-    from mpi4py import MPI
-
     x = particles["x"]
     leaving = slab_leavers(x, dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells, dec.lo_cell,
                            dec.hi_cell)
@@ -91,7 +90,7 @@ def migrate(decomposition, particles, step=0, hop=False):
         count_bufs.append((nb, out, inc))
         reqs.append(comm.Isend(out, dest=nb, tag=TAG_COUNT))
         reqs.append(comm.Irecv(inc, source=nb, tag=TAG_COUNT))
-    MPI.Request.Waitall(reqs)
+    wait_all(reqs)
     for nb, _, inc in count_bufs:
         counts[nb] = inc
     reqs = []
@@ -104,7 +103,7 @@ def migrate(decomposition, particles, step=0, hop=False):
             reqs.append(comm.Isend(rows, dest=nb, tag=TAG_DATA))
         if buf.size:
             reqs.append(comm.Irecv(buf, source=nb, tag=TAG_DATA))
-    MPI.Request.Waitall(reqs)
+    wait_all(reqs)
     sent = len(leaving)
     migrate.bytes_sent += sum(rows.nbytes for _, rows in sends)
     particles.remove(leaving)

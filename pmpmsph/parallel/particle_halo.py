@@ -8,6 +8,7 @@ particle of the neighbour within `width` of the face can interact with our parti
 import numpy as np
 
 from ..errors import ConfigError
+from .distributor import wait_all
 from .migration import _columns, _pack, _row_bytes, _unpack
 
 TAG_HALO_COUNT = 31
@@ -102,8 +103,6 @@ class ParticleHalo:
 
     def _exchange_neighbours(self):
         p = self.particles
-        from mpi4py import MPI
-
         comm = self.dec.dist.comm
         lists = self.send_lists()
         sends = {route: _pack(p, self.names, idx) for route, idx in lists.items()}
@@ -115,7 +114,7 @@ class ParticleHalo:
                                    tag=TAG_HALO_COUNT + 100 * side))
             reqs.append(comm.Irecv(counts[side], source=nb,
                                    tag=TAG_HALO_COUNT + 100 * (1 - side)))
-        MPI.Request.Waitall(reqs)
+        wait_all(reqs)
         reqs, bufs = [], []
         for (side, nb, _shift), rows in sends.items():
             buf = np.empty(tuple(int(c) for c in counts[side]), np.uint8)
@@ -125,7 +124,7 @@ class ParticleHalo:
                 self.bytes_sent += rows.nbytes
             if buf.size:
                 reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_DATA + 100 * (1 - side)))
-        MPI.Request.Waitall(reqs)
+        wait_all(reqs)
         received = 0
         recv_rows = []
         for route, buf in zip(sends, bufs):
@@ -149,8 +148,6 @@ class ParticleHalo:
         self._refresh_images(names)
 
     def _refresh_neighbours(self, names):
-        from mpi4py import MPI
-
         p = self.particles
         comm = self.dec.dist.comm
         lists, recv_rows = self._plan
@@ -166,7 +163,7 @@ class ParticleHalo:
             bufs.append((first, shift, buf))
             if count:
                 reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_REFRESH + 100 * (1 - side)))
-        MPI.Request.Waitall(reqs)
+        wait_all(reqs)
         for first, shift, buf in bufs:
             if buf.shape[0]:
                 for name, arr in _columns(p, names, buf):

@@ -55,6 +55,7 @@ import numpy as np
 
 from ..codes import METHOD_CODES, MPM, SPH
 from ..jit import njit
+from ..particles import FieldSpec
 from ..scene.regions import region_methods
 from .scratch import rows_at_least
 from .sph_solid import solid_force
@@ -196,8 +197,6 @@ class SeedInterface(Uncoupled):
 
     @staticmethod
     def fields(case):
-        from ..particles import FieldSpec
-
         out = [FieldSpec("fsi", ("dim",)), FieldSpec("fext", ("dim",), migrate=False)]
         if case.coupling.interface == "conservative":
             out.append(FieldSpec("fcpl", ("dim",)))

@@ -45,6 +45,7 @@ from ..kernels.sph.integrate import (
 from ..kernels.sph.kernel_functions import SUPPORT, kernel_w
 from ..kernels.sph.walls import mirror_pressure, wall_state
 from ..parallel.decomposition import wrap_axis
+from ..parallel.particle_halo import ParticleHalo
 from ..particles import FieldSpec
 from .hydrostatic import fluid_columns
 from .scratch import rows_at_least
@@ -183,7 +184,7 @@ class SPHStage:
         if shifting_fluids(case):  # particle shifting: grad C and the surface eigenvalue
             out += [FieldSpec("gradc", (3,), migrate=False), FieldSpec("lam", (), migrate=False),
                     FieldSpec("gradv", (3, 3), migrate=False)]
-        if case.sph.hourglass > 0.0:   # reference positions (set at seeding, build.py)
+        if case.sph.hourglass > 0.0:   # reference positions (set at seeding, initial_particles.py)
             out += [FieldSpec("X0", ("dim",), halo=True, output=True),
                     FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
                     FieldSpec("Fh", (3, 3), migrate=False, halo=True)]
@@ -195,8 +196,6 @@ class SPHStage:
         return out
 
     def set_decomposition(self, decomposition):
-        from ..parallel.particle_halo import ParticleHalo
-
         self.dec = decomposition
         lo, hi = self.case.domain
         periodic = [(a, lo[a], hi[a] - lo[a]) for a in self.case.periodic]

@@ -25,6 +25,7 @@ from ..kernels.sph.integrate import add_scaled, first_outside
 from ..kernels.sph.kernel_functions import SUPPORT
 from ..kernels.sph.tlsph import (deformation_gradient, first_piola, internal_force,
                              kernel_correction, velocity_gradient)
+from ..parallel.particle_halo import ParticleHalo
 from ..particles import FieldSpec
 from .sph import HALO_MARGIN, SPHStage
 
@@ -62,8 +63,6 @@ class TLSPHStage(SPHStage):
         self.want_L = True  # F is integrated (eq. 9) or recomputed: advance it in any case
 
     def set_decomposition(self, decomposition):
-        from ..parallel.particle_halo import ParticleHalo
-
         self.dec = decomposition
         self.halo = ParticleHalo(decomposition, self.p, self._halo_width(), check=False)
         self.invalidate()

@@ -32,6 +32,8 @@ either orientation are accepted; a degenerate or inverted (self-crossing) elemen
 For GIMP and traction loads, which want a lattice spacing, a mesh body reports the mean
 particle size (mean volume)^(1/dim) along every axis.
 """
+import contextlib
+import io
 import os
 from dataclasses import dataclass, field
 
@@ -147,10 +149,7 @@ def element_particles(kind, v, ppe):
 
 def _read(path, key):
     """meshio.read, quietly; any failure (meshio may even call sys.exit) is a ConfigError."""
-    import contextlib
-    import io
-
-    import meshio
+    import meshio  # noqa: PLC0415 - optional: only mesh bodies need it
 
     chatter = io.StringIO()
     try:

@@ -464,7 +464,7 @@ def test_default_diagnostics_interval():
 
 def test_particle_sums_tagged_equals_the_switch():
     """The one-material (tagged) strain energy gives the runtime switch's sums bit for bit."""
-    from pmpmsph.build import material_arrays
+    from pmpmsph.initial_particles import material_arrays
     from pmpmsph.kernels.diagnostics import particle_sums
     from pmpmsph.materials.dispatch import material_tag
 

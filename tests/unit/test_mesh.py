@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from pmpmsph import ConfigError, load_case_file
-from pmpmsph.build import build_particles
+from pmpmsph.initial_particles import build_particles
 from pmpmsph.scene.mesh import MeshGeometry
 
 CASE_2D = """

@@ -1,4 +1,5 @@
-"""Build the particle state of a scene from its `Case` (seeding, materials, load fields)."""
+"""The initial particle state of a scene from its `Case`: every body seeded, its material, method
+and load fields set, the bad set-ups (overlaps, too many points, empty bodies) refused."""
 import numpy as np
 
 from .codes import METHOD_CODES
