@@ -187,9 +187,6 @@ def cmd_run(args, dist):
 
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
-    from .parallel.distributor import configure_numba_cache
-
-    configure_numba_cache()
     from .logs import setup_logging
     from .parallel.distributor import Distributor
 

@@ -1,4 +1,3 @@
-"""Test set-up: the Numba cache is keyed by source version and rank, as for real runs."""
-from pmpmsph.parallel.distributor import configure_numba_cache
-
-configure_numba_cache()
+"""Test set-up. The Numba cache is keyed by source version, as for real runs: importing
+pmpmsph (its `jit` module) configures it."""
+import pmpmsph  # noqa: F401

@@ -13,9 +13,6 @@ import sys
 
 
 def main(argv: "list[str] | None" = None) -> None:
-    from ..parallel.distributor import configure_numba_cache
-
-    configure_numba_cache()
     ap = argparse.ArgumentParser(prog="python -m pmpmsph.bench")
     sub = ap.add_subparsers(dest="command", required=True)
     tp = sub.add_parser("throughput", help="particle-steps/s against the peers")

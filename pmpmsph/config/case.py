@@ -7,6 +7,7 @@ come from their registries.
 from dataclasses import dataclass, field
 from typing import Optional
 
+from ..kernels.mpm.grid_conditions.registry import grid_conditions
 from ..kernels.mpm.shape_functions.registry import shape_functions
 from ..kernels.sph.smoothing.registry import kernel_code, smoothing_kernels
 from ..materials.base import Material
@@ -21,7 +22,8 @@ TRANSFERS = tuple(TRANSFER_SCHEMES)
 VELOCITY_UPDATES = ("flip", "apic", "mls")
 CONTACTS = ("single", "multi")
 METHODS = ("mpm", "sph")
-BC_KINDS = ("fixed", "slip", "friction")
+#: `[[boundaries]] type` choices: the registered grid conditions, in code order
+BC_KINDS = tuple(c.name for c in grid_conditions())
 #: `[sph] kernel` choices: the registered smoothing kernels, in code order
 SPH_KERNELS = tuple(k.name for k in smoothing_kernels())
 #: `[sph] integrator` choices (physics/sph_integrators.py; "leapfrog" is Verlet)

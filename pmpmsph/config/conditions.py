@@ -5,6 +5,7 @@ every error is a `ConfigError` naming the dotted TOML key."""
 import math
 
 from ..errors import ConfigError
+from ..kernels.mpm.grid_conditions.registry import condition_named, grid_conditions
 from .case import BC_KINDS, BoundarySpec, LoadSpec, PrescribedSpec, Region
 from .table import is_finite
 
@@ -40,11 +41,12 @@ def _face_normal(face, dim):
 def _boundary(t, dim):
     region = _region(t, dim)
     kind = t.string("type", choices=BC_KINDS)
+    condition = condition_named(kind)
     if region.face:
         normal = _face_normal(region.face, dim)
         if t.has("normal"):
             raise ConfigError(t.key("normal"), "a face has its own normal; remove 'normal'")
-    elif kind == "fixed":
+    elif condition.normal == "none":
         normal = (0.0,) * dim
     else:
         normal = t.vector("normal", dim)
@@ -52,12 +54,13 @@ def _boundary(t, dim):
         if norm == 0:
             raise ConfigError(t.key("normal"), "normal must not be zero")
         normal = tuple(c / norm for c in normal)
-    mu = t.number("friction", 0.0, min=0.0) if kind == "friction" else 0.0
+    mu = t.number("friction", 0.0, min=0.0) if condition.friction else 0.0
     until = t.number("until", math.inf, min=0.0) if t.has("until") else math.inf
     velocity = ()
     if t.has("velocity"):
-        if kind != "fixed":
-            raise ConfigError(t.key("velocity"), "a wall velocity applies to type = \"fixed\" "
+        if not condition.velocity:
+            moving = " or ".join(f'"{c.name}"' for c in grid_conditions() if c.velocity)
+            raise ConfigError(t.key("velocity"), f"a wall velocity applies to type = {moving} "
                               "(the nodes take it: a lid)")
         velocity = t.vector("velocity", dim)
         if region.face and velocity[FACES.index(region.face) // 2] != 0.0:

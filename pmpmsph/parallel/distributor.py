@@ -4,7 +4,6 @@
 solver needs on plain numbers and numpy arrays. It is the only place outside `parallel/`
 that touches mpi4py, and user code never sees a communicator.
 """
-import hashlib
 import os
 
 import numpy as np
@@ -174,39 +173,3 @@ def _injected_config_error(place, rank):
         raise ValueError(f"PMPMSPH_INJECT_CONFIG_ERROR: unknown place {what!r}")
     if int(where) == rank and what == place:
         raise ConfigError(f"<{place}>", f"fault injected on rank {rank} at {place}")
-
-
-#: where every compiled function lives (kernels may only import numpy, numba, math and these)
-JIT_SOURCES = ("kernels", "materials", "jit.py")
-
-
-def _source_digest():
-    """Hash of the compiled sources: Numba's cache only notices changes in a kernel's own
-    file, not in the kernels it calls, so the cache directory is keyed by all of them."""
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    h = hashlib.sha1()
-    for entry in JIT_SOURCES:
-        path = os.path.join(root, entry)
-        files = [path] if path.endswith(".py") else sorted(
-            os.path.join(folder, name) for folder, _, names in os.walk(path)
-            for name in names if name.endswith(".py"))
-        for name in sorted(files):
-            with open(name, "rb") as fh:
-                h.update(fh.read())
-    return h.hexdigest()[:12]
-
-
-def configure_numba_cache():
-    """Point Numba's cache at a directory per source version and per rank.
-
-    Per source version, so that an edited callee never leaves a stale compiled caller behind
-    (Numba only watches a kernel's own file). All ranks share it: `Simulation` compiles on
-    rank 0 first and the other ranks then only read (see `warmup.compile_kernels`).
-    Must run before numba compiles anything. An explicit NUMBA_CACHE_DIR is the base.
-    """
-    if os.environ.get("PMPMSPH_CACHE_SET"):
-        return
-    base = os.environ.get("NUMBA_CACHE_DIR") or os.path.join(
-        os.path.expanduser("~"), ".cache", "pmpmsph-numba")
-    os.environ["NUMBA_CACHE_DIR"] = os.path.join(base, _source_digest())
-    os.environ["PMPMSPH_CACHE_SET"] = "1"

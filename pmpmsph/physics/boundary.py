@@ -5,7 +5,8 @@ A boundary with `until = t` is a gate: it acts while time < t and is then remove
 """
 import numpy as np
 
-from ..kernels.mpm.transfers import BC_CODES, FRICTION, apply_grid_bc, mirror_grid_bc
+from ..kernels.mpm.grid_bc import apply_grid_bc, mirror_grid_bc
+from ..kernels.mpm.grid_conditions.registry import condition_named
 
 
 class GridBoundaries:
@@ -23,12 +24,13 @@ class GridBoundaries:
             normal[:dim] = spec.normal if spec.normal else 0.0
             wall = np.zeros(3)
             wall[:dim] = spec.velocity if spec.velocity else 0.0
-            self.parts.append((nodes, BC_CODES[spec.kind], normal, spec.friction, wall))
-        # fixed and slip faces also mirror the nodes beyond them (see `mirror_grid_bc`);
-        # one-sided friction walls let material leave, so they do not
+            self.parts.append((nodes, condition_named(spec.kind).code, normal, spec.friction,
+                               wall))
+        # faces whose condition mirrors (fixed, slip) set the nodes beyond them too (see
+        # `mirror_grid_bc`); one-sided friction walls let material leave, so they do not
         self.mirrors = [grid.mirror_pairs(spec.region.face)
-                        if spec.region.face and BC_CODES[spec.kind] != FRICTION else None
-                        for spec in specs]
+                        if spec.region.face and condition_named(spec.kind).mirror is not None
+                        else None for spec in specs]
         self.active_key = None
         self._arrays = None
 
