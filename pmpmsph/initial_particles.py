@@ -8,9 +8,9 @@ from .kernels.mpm.shape_functions.registry import shape_named
 from .particles import F_FIELD, J_FIELD, FieldSpec, ParticleSet
 from .physics.coupling import coupling_fields
 from .physics.loads import PrescribedVelocity, TractionLoads, _in_region
-from .physics.mpm import MPMStage
-from .physics.sph import SPHStage
-from .physics.tlsph import TLSPHStage
+from .physics.mpm.stage import MPMStage
+from .physics.sph.stage import SPHStage
+from .physics.sph.total_lagrangian import TLSPHStage
 from .scene.regions import region_methods
 from .scene.seeding import seed_body
 

@@ -32,7 +32,7 @@ from .parallel.migration import MigrationSchedule, migrate
 from .physics.coupling import interface_for
 from .physics.hydrostatic import hydrostatic_mpm
 from .physics.loads import PrescribedVelocity, TractionLoads
-from .physics.mpm import MPMStage
+from .physics.mpm.stage import MPMStage
 from .timing import Timers
 from .warmup import compile_kernels
 

@@ -4,7 +4,7 @@ A rectangular block (neo-Hookean, E = 2e5, nu = 0.3, density `ratio` x 997) of `
 `height` is dropped from `drop` above the surface of Tait water (rho0 = 997, kappa = 2e4,
 gamma = 7, mu = 0.98) `depth` deep in a tank `tank` wide, started hydrostatic. Combinations
 (block in water): "mpm_in_sph" (SPH water in a tank of dummy walls; the coupling's fluid-solid
-pairs), "sph_in_mpm" (an SPH solid in MPM water; physics/sph_solid.py), "mpm_in_mpm" (both
+pairs), "sph_in_mpm" (an SPH solid in MPM water; physics/sph/solid_in_fluid.py), "mpm_in_mpm" (both
 MPM, one velocity field per body, Bardenhagen contact), "sph_in_sph" (both SPH).
 
 Reference: Archimedes' principle in the Tait water at rest: the draft d of the rectangle of

@@ -80,7 +80,7 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
     else:  # a total-Lagrangian SPH plate (the formulation that bends well, BENCHMARKS 12)
         sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping)
         # water and plate each in their own velocity field, in frictionless contact (an
-        # SPH solid takes part in P2G as a body of its own: physics/sph_solid.py)
+        # SPH solid takes part in P2G as a body of its own: physics/sph/solid_in_fluid.py)
         mpm.update(hydrostatic=True, velocity_update="apic", contact="multi", contact_gap=1.5)
         if plate_method == "mpm":
             sph = None

@@ -11,12 +11,12 @@ from ..kernels.mpm.grid_conditions.registry import grid_conditions
 from ..kernels.mpm.shape_functions.registry import shape_functions
 from ..kernels.sph.smoothing.registry import kernel_code, smoothing_kernels
 from ..materials.base import Material
-from ..physics.sph_integrators import SPH_INTEGRATORS as SPH_INTEGRATOR_CLASSES
-from ..physics.transfer_schemes import TRANSFER_SCHEMES
+from ..physics.sph.integrators import SPH_INTEGRATORS as SPH_INTEGRATOR_CLASSES
+from ..physics.mpm.transfer_schemes import TRANSFER_SCHEMES
 
 #: `[mpm] shape` choices: the registered shape functions, in code order
 SHAPES = tuple(s.name for s in shape_functions())
-#: `[mpm] transfer` choices: the transfer schemes (physics/transfer_schemes.py)
+#: `[mpm] transfer` choices: the transfer schemes (physics/mpm/transfer_schemes.py)
 TRANSFERS = tuple(TRANSFER_SCHEMES)
 #: how G2P hands the grid velocity back to the particles (kernels/mpm/transfers.py, affine.py)
 VELOCITY_UPDATES = ("flip", "apic", "mls")
@@ -26,7 +26,7 @@ METHODS = ("mpm", "sph")
 BC_KINDS = tuple(c.name for c in grid_conditions())
 #: `[sph] kernel` choices: the registered smoothing kernels, in code order
 SPH_KERNELS = tuple(k.name for k in smoothing_kernels())
-#: `[sph] integrator` choices (physics/sph_integrators.py; "leapfrog" is Verlet)
+#: `[sph] integrator` choices (physics/sph/integrators.py; "leapfrog" is Verlet)
 SPH_INTEGRATORS = tuple(SPH_INTEGRATOR_CLASSES)
 SPH_FORMULATIONS = ("updated", "total")
 

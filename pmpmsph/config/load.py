@@ -13,7 +13,7 @@ import tomllib
 from ..errors import ConfigError
 from ..kernels.mpm.shape_functions.registry import shape_named
 from ..materials import material_from_table
-from ..physics.transfer_schemes import TRANSFER_SCHEMES
+from ..physics.mpm.transfer_schemes import TRANSFER_SCHEMES
 from .case import (CONTACTS, SHAPES, TRANSFERS, VELOCITY_UPDATES, Case, CouplingSpec, MPMSpec,
                    OutputSpec, ParallelSpec, TimeSpec)
 from .conditions import _boundary, _load, _prescribed

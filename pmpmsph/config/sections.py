@@ -8,7 +8,7 @@ import contextvars
 import math
 
 from ..errors import ConfigError
-from ..physics.sph_integrators import SPH_INTEGRATORS as SPH_INTEGRATOR_CLASSES
+from ..physics.sph.integrators import SPH_INTEGRATORS as SPH_INTEGRATOR_CLASSES
 from ..scene.geometry import Box, Disc, Polygon
 from ..scene.mesh import MeshGeometry, mesh_geometry
 from .case import (METHODS, SPH_FORMULATIONS, SPH_INTEGRATORS, SPH_KERNELS, BodySpec,
@@ -30,7 +30,7 @@ def _grid(t, dim):
     else:
         length = t.vector("length", dim, positive=True, scalar_ok=True)
         h = tuple(length[a] / cells[a] for a in range(dim))
-    if any(abs(h[a] - h[0]) > 1e-12 * h[0] for a in range(dim)):  # (physics/grid.py)
+    if any(abs(h[a] - h[0]) > 1e-12 * h[0] for a in range(dim)):  # (physics/mpm/grid.py)
         sizes = ", ".join(f"{v:.6g}" for v in h)
         raise ConfigError(t.key("cells"), f"the cells are {sizes} wide along the axes: they "
                           "must be square (one cell size), so length / cells must agree")

@@ -1,7 +1,7 @@
 """Grid-to-particle kicks of the coupling: `add_gathered`, v_p += scale sum_I N_Ip g_I, and
 its two uses.
 
-`gather_increment` (an SPH solid in an MPM fluid, `physics.sph_solid`): the change the grid
+`gather_increment` (an SPH solid in an MPM fluid, `physics.sph.solid_in_fluid`): the change the grid
 contact made to the velocity field of each particle's body, interpolated as G2P would. With
 sum_p N_I m_p = m_I (the P2G of these rows) the particles receive exactly the momentum
 sum_I m_I dv_I that the contact took from the other fields.

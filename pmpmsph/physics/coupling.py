@@ -10,7 +10,7 @@ in which sums:
   * each particle is updated by the scheme of its own method;
   * SPH solid particles near an MPM fluid of another material (with [mpm] contact = "multi")
     take part in P2G in their own velocity field, in contact with the fluid's on the grid
-    (physics/sph_solid.py).
+    (physics/sph/solid_in_fluid.py).
 Rows are kept ordered MPM | transition SPH | SPH solids in contact | other SPH (walls) so
 that P2G runs over one prefix of the owned rows and G2P over a shorter one; the order is
 restored only when membership changed or migration moved rows. With `handover`, a
@@ -58,7 +58,7 @@ from ..jit import njit
 from ..particles import FieldSpec
 from ..scene.regions import region_methods
 from .scratch import rows_at_least
-from .sph_solid import solid_force
+from .sph.solid_in_fluid import solid_force
 
 #: row keys: MPM, transition SPH (same material), SPH solid in contact, the rest
 TRANSITION, CONTACT, REST = 1, 2, 3
@@ -174,7 +174,7 @@ class Uncoupled:
 
     def p2g_parts(self, ng, ns, n, with_force):
         """Row ranges of P2G as (lo, hi, scatter the stress, scatter the forces): rows
-        [0, ns) with their stress, [ns, n) (SPH solids in contact, physics/sph_solid.py,
+        [0, ns) with their stress, [ns, n) (SPH solids in contact, physics/sph/solid_in_fluid.py,
         whose stress is in their SPH force `fext`) without; ng is where the rows that G2P
         updates end."""
         if ns < n:

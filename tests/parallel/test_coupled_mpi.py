@@ -111,6 +111,6 @@ def test_float_equals_one_rank():
 def test_sph_block_in_mpm_water_equals_one_rank():
     """The float the other way round (cases/coupled_sph_solid_float.toml) at spacing 0.01,
     200 steps: an SPH ice block in MPM water, hydrostatic MPM start, the block's particles
-    in their own grid velocity field in contact with the water's (physics/sph_solid.py),
+    in their own grid velocity field in contact with the water's (physics/sph/solid_in_fluid.py),
     the contact's change gathered back onto the block, the slab faces cutting both."""
     _case_equals_one_rank("coupled_sph_solid_float.toml", 2)

@@ -1,9 +1,9 @@
 """`Grid.work_range`: only the node layers the particles can reach are reset and solved, and
-the result is the full grid's, bit for bit (physics/grid.py)."""
+the result is the full grid's, bit for bit (physics/mpm/grid.py)."""
 import numpy as np
 
 from pmpmsph.config.case import GridSpec
-from pmpmsph.physics.grid import Grid
+from pmpmsph.physics.mpm.grid import Grid
 from pmpmsph.scene_api import Scene
 
 

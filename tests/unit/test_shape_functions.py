@@ -9,7 +9,7 @@ from pmpmsph.kernels.mpm.shape_functions.registry import (ShapeFunction, registe
                                                          shape_functions)
 from pmpmsph.kernels.mpm.shapes import (STENCIL_WIDTH, apic_d_inverse, stencil_width,
                                         weights_1d)
-from pmpmsph.physics.mpm import MPMStage
+from pmpmsph.physics.mpm.stage import MPMStage
 
 REGISTERED = shape_functions()
 

@@ -1,4 +1,4 @@
-"""The grid contact of an SPH solid with an MPM fluid (physics/sph_solid.py): the velocity
+"""The grid contact of an SPH solid with an MPM fluid (physics/sph/solid_in_fluid.py): the velocity
 change the contact makes to the solid's field, gathered back to its particles
 (kernels/coupling.py's gather_increment), gives them exactly the momentum the fluid's field
 lost, and it stops their approach."""
@@ -9,7 +9,7 @@ from pmpmsph.kernels.mpm.contact import multi_field_contact, touching_separation
 from pmpmsph.kernels.mpm.transfers import WITH_FORCE, grid_velocity, p2g
 from pmpmsph.kernels.mpm.shapes import GIMP, static_tags, weights_1d
 from pmpmsph.kernels.coupling import gather_increment
-from pmpmsph.physics.grid import Grid
+from pmpmsph.physics.mpm.grid import Grid
 
 
 def _scene(seed):

@@ -83,7 +83,7 @@ RHO_F, KAPPA, GAMMA, G = 997.0, 2.0e3, 7.0, 9.81
 
 def tait_hydrostatic_density(z):
     """Tait density at depth z below a free surface at rest (seed 003 eq. 50 with
-    dp/dz = rho g integrated; as pmpmsph/physics/sph.py's hydrostatic start)."""
+    dp/dz = rho g integrated; as pmpmsph/physics/sph/stage.py's hydrostatic start)."""
     s = RHO_F * G * np.maximum(z, 0.0) / KAPPA
     return RHO_F * (1.0 + (GAMMA - 1.0) / GAMMA * s) ** (1.0 / (GAMMA - 1.0))
 

@@ -1,6 +1,6 @@
 """Periodic coupled MPM-SPH scenes (issue 18, item 4): `[grid] periodic = ["x"]` makes the
 grid periodic (`Grid.fold_periodic`) and the particles too, over the grid's length (SPH
-images and the wrap of physics/sph.py, the MPM wrap of physics/mpm.py; the marks of the
+images and the wrap of physics/sph/stage.py, the MPM wrap of physics/mpm/stage.py; the marks of the
 transition zone fold across the seam, physics/coupling.py).
 
 1. The coupled piston (bench/scenes.py `coupled_piston`: SPH water 0.2 deep on a no-slip

@@ -2,7 +2,7 @@
 other way round (cases/coupled_sph_solid_float.toml; seed 003 §8.7, BENCHMARKS.md scene 7):
 an SPH ice triangle (neo-Hookean, E = 2e5, nu = 0.3, rho_s = 917) floating on MPM Tait water
 (rho_f = 997, kappa = 2e3, gamma = 7, mu = 0.98), released at rest near its equilibrium in
-hydrostatic water; the coupling of physics/sph_solid.py (the water's pressure on the ice
+hydrostatic water; the coupling of physics/sph/solid_in_fluid.py (the water's pressure on the ice
 through the SPH mirror pair, the ice's own kinematics over the ice alone, and the ice's own
 grid velocity field in frictionless contact with the water's).
 
@@ -17,7 +17,7 @@ Measured (this build, `[mpm] contact_gap = 1.5` as in the case):
     83.15 J at t = 6; the nearest water point 0.90 spacing from a block particle; about 35 s
     of run on one core.
   spacing 0.005 (the case): see cases/coupled_sph_solid_float.toml.
-Variants at spacing 0.01 (the comparisons of physics/sph_solid.py): with the default
+Variants at spacing 0.01 (the comparisons of physics/sph/solid_in_fluid.py): with the default
 contact_gap = 1 the water row below the block closes in on it (0.34 spacing at t = 2, 0.04
 at t = 4.8) and the block creeps past Archimedes (0.1126 over t = 1.5-2, 0.1142 at t = 4.8,
 still sinking); without the grid contact (mpm.contact = "single": the pressure pairs alone)
@@ -25,7 +25,7 @@ it sinks at a steady 1 mm/s (0.1145 at t = 4.8, 20 water points inside the block
 lattice); with the contact alone (no pressure pairs) at 3 mm/s, 24 water points inside its
 lattice by t = 1.8 (draft 0.1145); with the solid's velocity gradient summed over the water
 too it fails at t = 0.41 s.
-NOT met: the approach to equilibrium is slow (about 5 s; PIC water, physics/sph_solid.py).
+NOT met: the approach to equilibrium is slow (about 5 s; PIC water, physics/sph/solid_in_fluid.py).
 """
 import sys
 from pathlib import Path

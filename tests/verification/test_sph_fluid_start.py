@@ -1,5 +1,5 @@
 """SPH fluid options for free-surface and coupled scenes (kernels/sph/integrate.py,
-kernels/sph/rates.py, physics/sph.py), each against its closed form:
+kernels/sph/rates.py, physics/sph/stage.py), each against its closed form:
 
 * `sph.hydrostatic = true`: a Tait column starts at rest in the hydrostatic state,
   rho = rho0 (1 + (gamma-1)/gamma rho0 g z/kappa)^(1/(gamma-1)) at depth z below its top;

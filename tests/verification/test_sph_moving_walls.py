@@ -1,4 +1,4 @@
-"""Walls with a velocity (kernels/sph/walls.py, physics/sph.py): a `moving` wall body
+"""Walls with a velocity (kernels/sph/walls.py, physics/sph/stage.py): a `moving` wall body
 translates with its velocity; a wall with a velocity but not moving (a lid) stays in place
 and drags the fluid next to it (no-slip ghost velocity 2 v_wall - v~); a wall at rest
 drags nothing. A column of viscous fluid at rest between a floor and a lid, no gravity,

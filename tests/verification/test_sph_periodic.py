@@ -1,5 +1,5 @@
 """Periodic axes of SPH scenes (`[domain] periodic = ["x"]`; parallel/particle_halo.py
-images, the wrap in physics/sph.py) and the analytic viscous flow of issue 18.
+images, the wrap in physics/sph/stage.py) and the analytic viscous flow of issue 18.
 
 1. A uniform fluid at rest in a doubly periodic box (no walls, no gravity) stays at rest:
    with images every particle has a full support; without them the edges would pull in.

@@ -1,6 +1,6 @@
 """Updated-Lagrangian SPH kernels (Gray-Monaghan solids, weakly compressible fluids).
 
-Each function loops over plain arrays; the stage (`pmpmsph.physics.sph`) owns the order.
+Each function loops over plain arrays; the stage (`pmpmsph.physics.sph.stage`) owns the order.
 Rows [0, n_owned) are owned particles, the rest halo copies. `method` codes: 0 MPM,
 1 SPH, 2 SPH wall (dummy particle). Neighbour lists are half CSR lists (`start`, `index`;
 each pair once) from `kernels.neighbours`. The integrators are in `kernels.sph.integrate`.
@@ -190,7 +190,7 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     correction below). A solid's own drho and L (hence its F and
     stress) leave such a fluid neighbour out: the fluid acts on it by pressure alone (an SPH
     solid in MPM water sheared with the water's velocities and blew up;
-    physics/sph_solid.py).
+    physics/sph/solid_in_fluid.py).
     Other material interfaces (two solids, two fluids) keep the contact pressure
     p_c = max(p_a, p_b, 0) on both ends, -p_c (1/rho_a^2 + 1/rho_b^2) I: the full sigma/rho^2
     term would let a solid in tension pull the other body's particles into it; within one

@@ -5,7 +5,7 @@
 
 and `kernels.mpm.shapes` generates from it the switches the transfers call (`weights_1d`,
 `weights_tagged`, `stencil_width`, the APIC D^-1), as `[mpm] shape`'s choice list
-(`config.case.SHAPES`) and the particle fields a shape needs (`physics.mpm`) are.
+(`config.case.SHAPES`) and the particle fields a shape needs (`physics.mpm.stage`) are.
 
 A shape function here is a tensor product of 1-D weights: `weights(X, lp)` gives
 (base, w, dw) at X (cell units) for the nodes base .. base + width - 1, as 4-tuples.
@@ -20,7 +20,7 @@ Traits:
   corners         the stencil is averaged over the 2^dim corners of a convected particle
                   domain (CPDI: `kernels.mpm.shapes.corner_stencil`)
   gap_weights     the 1-D weights (X, lp) from which multi-field contact estimates the gap
-                  at which two bodies' particles first share a node (`physics.mpm`), with
+                  at which two bodies' particles first share a node (`physics.mpm.stage`), with
                   lp = 1/4; default `weights`
 
 `shape_functions()` imports every module of this package that is not this one, so a new shape

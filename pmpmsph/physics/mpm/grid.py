@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ..kernels.partition import column_extent
+from ...kernels.partition import column_extent
 
 
 class Grid:

@@ -18,16 +18,16 @@ See `pmpmsph.kernels.sph.tlsph` for the index conventions and the stability find
 """
 import numpy as np
 
-from ..errors import RunError
-from ..kernels.neighbours import neighbour_lists
-from ..kernels.sph.rates import sph_stress_all
-from ..kernels.sph.integrate import add_scaled, first_outside
-from ..kernels.sph.kernel_functions import SUPPORT
-from ..kernels.sph.tlsph import (deformation_gradient, first_piola, internal_force,
+from ...errors import RunError
+from ...kernels.neighbours import neighbour_lists
+from ...kernels.sph.rates import sph_stress_all
+from ...kernels.sph.integrate import add_scaled, first_outside
+from ...kernels.sph.kernel_functions import SUPPORT
+from ...kernels.sph.tlsph import (deformation_gradient, first_piola, internal_force,
                              kernel_correction, velocity_gradient)
-from ..parallel.particle_halo import ParticleHalo
-from ..particles import FieldSpec
-from .sph import HALO_MARGIN, SPHStage
+from ...parallel.particle_halo import ParticleHalo
+from ...particles import FieldSpec
+from .stage import HALO_MARGIN, SPHStage
 
 
 class TLSPHStage(SPHStage):

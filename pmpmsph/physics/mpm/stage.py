@@ -7,8 +7,8 @@ MUSL (Sulsky):      P2G(m, mv, f) -> grid solve + BCs -> G2P(v, x) -> P2G(m, mv)
                     new particle velocities -> grid v + BCs -> G2P(L, F, sigma)
 Multi-field contact (Bardenhagen et al. 2001) runs after every grid solve when enabled.
 In a coupled scene the rows [n_stress, n_p2g) are SPH solid particles in their own velocity
-fields (`physics.sph_solid`): they scatter mass, momentum and their SPH force (no stress), and
-take back the velocity change the contact of the force solve made to their field.
+fields (`physics.sph.solid_in_fluid`): they scatter mass, momentum and their SPH force (no
+stress), and take back the velocity change the contact of the force solve made to their field.
 PIC-USL without damping scatters p + dt f in one go (`fold_force`, mpm88's form).
 `mpm.velocity_update` = "apic" / "mls": the passes that move the particles hand them v_p and
 the affine matrix C_p (kernels/mpm/affine.py), and P2G scatters m_p (v_p + C_p (x_I - x_p)).
@@ -17,23 +17,23 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from ..kernels.mpm.contact import multi_field_contact, touching_separation
-from ..kernels.coupling import gather_increment, grid_force_kick
-from ..kernels.mpm.transfers import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
-from ..kernels.mpm.affine import g2p_affine, p2g_affine
-from ..kernels.partition import cell_keys
-from ..kernels.mpm.shape_functions.registry import shape_named
-from ..kernels.mpm.shapes import CPDI, cpdi_reach, static_tags
-from ..materials.dispatch import material_tag
-from ..particles import FieldSpec
+from ...kernels.mpm.contact import multi_field_contact, touching_separation
+from ...kernels.coupling import gather_increment, grid_force_kick
+from ...kernels.mpm.transfers import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
+from ...kernels.mpm.affine import g2p_affine, p2g_affine
+from ...kernels.partition import cell_keys
+from ...kernels.mpm.shape_functions.registry import shape_named
+from ...kernels.mpm.shapes import CPDI, cpdi_reach, static_tags
+from ...materials.dispatch import material_tag
+from ...particles import FieldSpec
 from .boundary import GridBoundaries
-from .coupling import Uncoupled
+from ..coupling import Uncoupled
 from .grid import Grid
-from .scratch import rows_at_least
+from ..scratch import rows_at_least
 from .transfer_schemes import TRANSFER_SCHEMES
-from ..parallel.decomposition import wrap_axis
-from ..parallel.grid_halo import GridHalo
-from ..timing import Timers
+from ...parallel.decomposition import wrap_axis
+from ...parallel.grid_halo import GridHalo
+from ...timing import Timers
 
 #: grids with fewer nodes reset and solve every node (`Grid.work_range` costs ~5 us a call)
 TRIM_MIN_NODES = 4096
@@ -98,7 +98,7 @@ class MPMStage:
     @property
     def n_stress(self):
         """Rows [0, n_stress) scatter their stress; [n_stress, n_p2g) are SPH solids in
-        contact (physics.sph_solid)."""
+        contact (physics.sph.solid_in_fluid)."""
         return self.n_p2g if self._n_stress is None else self._n_stress
 
     @n_stress.setter

@@ -22,35 +22,35 @@ force, refreshes it in the halo: the rates then use corrected gradients (see `sp
 """
 import numpy as np
 
-from ..kernels.neighbours import moved_beyond, neighbour_lists
-from ..kernels.sph.rates import (
+from ...kernels.neighbours import moved_beyond, neighbour_lists
+from ...kernels.sph.rates import (
     pair_stress,
     sound_speeds,
     sph_rates,
     sph_stress,
     sync_ghost_velocity,
 )
-from ..kernels.sph.artificial_stress import artificial_stress
-from ..kernels.sph.correction import correction_matrices
-from ..kernels.sph.density import density_gradient
-from ..kernels.sph.shifting import shift_positions, shifting_state
-from ..kernels.sph.hourglass import hourglass_fit, hourglass_forces
-from ..kernels.sph.integrate import (
+from ...kernels.sph.artificial_stress import artificial_stress
+from ...kernels.sph.correction import correction_matrices
+from ...kernels.sph.density import density_gradient
+from ...kernels.sph.shifting import shift_positions, shifting_state
+from ...kernels.sph.hourglass import hourglass_fit, hourglass_forces
+from ...kernels.sph.integrate import (
     add_scaled,
     advance,
     cayley_update,
     first_outside,
     max_signal,
 )
-from ..kernels.sph.kernel_functions import SUPPORT, kernel_w
-from ..kernels.sph.walls import mirror_pressure, wall_state
-from ..parallel.decomposition import wrap_axis
-from ..parallel.particle_halo import ParticleHalo
-from ..particles import FieldSpec
-from .hydrostatic import fluid_columns
-from .scratch import rows_at_least
-from .sph_integrators import SPH_INTEGRATORS
-from ..timing import Timers
+from ...kernels.sph.kernel_functions import SUPPORT, kernel_w
+from ...kernels.sph.walls import mirror_pressure, wall_state
+from ...parallel.decomposition import wrap_axis
+from ...parallel.particle_halo import ParticleHalo
+from ...particles import FieldSpec
+from ..hydrostatic import fluid_columns
+from ..scratch import rows_at_least
+from .integrators import SPH_INTEGRATORS
+from ...timing import Timers
 
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
 #: may move up to CFL * h past their slab face within a step (migration comes at its end)

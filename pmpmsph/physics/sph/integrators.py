@@ -7,7 +7,7 @@ choices come from it).
 Each `updated(stage, dt, m0, kicked)` / `total(stage, dt)` returns a failed row or -1.
 Traits: `multi_stage` (it keeps the step-start state x_n, v_n, rho_n, F_n) and `aliases`.
 """
-from ..kernels.sph.integrate import add_scaled, cayley_update
+from ...kernels.sph.integrate import add_scaled, cayley_update
 
 
 class Verlet:

@@ -5,8 +5,8 @@ A boundary with `until = t` is a gate: it acts while time < t and is then remove
 """
 import numpy as np
 
-from ..kernels.mpm.grid_bc import apply_grid_bc, mirror_grid_bc
-from ..kernels.mpm.grid_conditions.registry import condition_named
+from ...kernels.mpm.grid_bc import apply_grid_bc, mirror_grid_bc
+from ...kernels.mpm.grid_conditions.registry import condition_named
 
 
 class GridBoundaries:

@@ -1,0 +1,1 @@
+"""The MPM stage: its grid, grid boundary conditions and transfer schemes."""
