@@ -11,9 +11,8 @@ import numpy as np
 
 from ..errors import RunError
 from ..kernels.partition import max_abs_column, slab_leavers
-from .distributor import wait_all
+from .distributor import exchange_rows
 
-TAG_COUNT = 21
 TAG_DATA = 22
 
 
@@ -76,36 +75,13 @@ def migrate(decomposition, particles, step=0, hop=False):
         raise RunError(step, gid, "particle jumped over a whole slab in one step (dt too "
                        "large for the slab width, or the particle was thrown out)")
     names = particles.fields(migrate=True)
-    comm = dec.dist.comm
+    width = sum(_row_bytes(particles[name]) for name in names)
     sends = []
     for nb in sorted({nb for _, nb, _ in dec.routes()}):  # (on two periodic ranks: once)
-        idx = leaving[owner == nb]
-        sends.append((nb, _pack(particles, names, idx)))
-    counts = {}
-    reqs = []
-    count_bufs = []
-    for nb, rows in sends:
-        out = np.array([rows.shape[0], rows.shape[1]], np.int64)
-        inc = np.zeros(2, np.int64)
-        count_bufs.append((nb, out, inc))
-        reqs.append(comm.Isend(out, dest=nb, tag=TAG_COUNT))
-        reqs.append(comm.Irecv(inc, source=nb, tag=TAG_COUNT))
-    wait_all(reqs)
-    for nb, _, inc in count_bufs:
-        counts[nb] = inc
-    reqs = []
-    recv_rows = []
-    for nb, rows in sends:
-        k, width = counts[nb]
-        buf = np.empty((int(k), int(width)), np.uint8)
-        recv_rows.append(buf)
-        if rows.size:
-            reqs.append(comm.Isend(rows, dest=nb, tag=TAG_DATA))
-        if buf.size:
-            reqs.append(comm.Irecv(buf, source=nb, tag=TAG_DATA))
-    wait_all(reqs)
+        sends.append((nb, TAG_DATA, TAG_DATA, _pack(particles, names, leaving[owner == nb])))
+    recv_rows = exchange_rows(dec.dist.comm, sends, width)
     sent = len(leaving)
-    migrate.bytes_sent += sum(rows.nbytes for _, rows in sends)
+    migrate.bytes_sent += sum(rows.nbytes for *_, rows in sends)
     particles.remove(leaving)
     received = 0
     for buf in recv_rows:

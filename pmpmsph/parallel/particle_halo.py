@@ -8,10 +8,9 @@ particle of the neighbour within `width` of the face can interact with our parti
 import numpy as np
 
 from ..errors import ConfigError
-from .distributor import wait_all
+from .distributor import exchange_rows, wait_all
 from .migration import _columns, _pack, _row_bytes, _unpack
 
-TAG_HALO_COUNT = 31
 TAG_HALO_DATA = 32
 TAG_HALO_REFRESH = 33
 #: halo fields fixed for the particle's life (identity, method, material, mass)
@@ -103,31 +102,16 @@ class ParticleHalo:
 
     def _exchange_neighbours(self):
         p = self.particles
-        comm = self.dec.dist.comm
         lists = self.send_lists()
-        sends = {route: _pack(p, self.names, idx) for route, idx in lists.items()}
-        counts, reqs = {}, []
-        for (side, nb, _shift), rows in sends.items():
-            # sent from my face `side`, it reaches the neighbour's opposite face
-            counts[side] = np.zeros(2, np.int64)
-            reqs.append(comm.Isend(np.array(rows.shape, np.int64), dest=nb,
-                                   tag=TAG_HALO_COUNT + 100 * side))
-            reqs.append(comm.Irecv(counts[side], source=nb,
-                                   tag=TAG_HALO_COUNT + 100 * (1 - side)))
-        wait_all(reqs)
-        reqs, bufs = [], []
-        for (side, nb, _shift), rows in sends.items():
-            buf = np.empty(tuple(int(c) for c in counts[side]), np.uint8)
-            bufs.append(buf)
-            if rows.size:
-                reqs.append(comm.Isend(rows, dest=nb, tag=TAG_HALO_DATA + 100 * side))
-                self.bytes_sent += rows.nbytes
-            if buf.size:
-                reqs.append(comm.Irecv(buf, source=nb, tag=TAG_HALO_DATA + 100 * (1 - side)))
-        wait_all(reqs)
+        width = sum(_row_bytes(p.arrays[name]) for name in self.names)
+        # sent from my face `side`, a message reaches the neighbour's opposite face
+        sends = [(nb, TAG_HALO_DATA + 100 * side, TAG_HALO_DATA + 100 * (1 - side),
+                  _pack(p, self.names, idx)) for (side, nb, _shift), idx in lists.items()]
+        bufs = exchange_rows(self.dec.dist.comm, sends, width)
+        self.bytes_sent += sum(rows.nbytes for *_, rows in sends)
         received = 0
         recv_rows = []
-        for route, buf in zip(sends, bufs):
+        for route, buf in zip(lists, bufs):
             recv_rows.append((route, p.n_total, buf.shape[0]))
             if buf.shape[0]:
                 values = _unpack(p, self.names, buf)
