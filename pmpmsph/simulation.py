@@ -28,7 +28,7 @@ from .parallel.decomposition import Decomposition, default_axis
 from .parallel.distributor import Distributor
 from .parallel.balance import LoadBalancer
 from .parallel.rebalancing import Rebalancing
-from .parallel.migration import MigrationSchedule, migrate
+from .parallel.migration import MigrationSchedule, migrate, plan_migration
 from .physics.coupling import interface_for
 from .physics.hydrostatic import hydrostatic_mpm
 from .physics.loads import PrescribedVelocity, TractionLoads
@@ -271,7 +271,18 @@ class Simulation(Output, Restart, Rebalancing):
         if self.prescribed is not None:
             self.prescribed.apply(self.time, self.dt, x_before)
         dec = self.decomposition
-        failed, speed, signal = self._step_check(bad >= 0, fused)
+        # a scene that migrates every step plans it before the step's allreduce, which then
+        # carries the flag of a particle skipping a slab too (one collective fewer)
+        plan, far = None, None
+        if self.migration.every_step:
+            far = False
+            if bad < 0:
+                with self.timers.phase("migration"):
+                    if dec.wraps:  # into the period, then to the owner across the wrap
+                        dec.wrap(self.particles["x"][: self.particles.n_owned])
+                    plan = plan_migration(dec, self.particles)
+                far = len(plan[2]) > 0
+        failed, speed, signal, far = self._step_check(bad >= 0, fused, far)
         if signal is not None:
             self._fused_signal = (self.step_count + 1, signal)
         if failed:
@@ -280,10 +291,11 @@ class Simulation(Output, Restart, Rebalancing):
         self.time += self.dt
         self.step_count += 1
         if due and dec is not None:
-            if dec.wraps:  # into the period, then to the owner across the wrap
+            if dec.wraps and plan is None:
                 dec.wrap(self.particles["x"][: self.particles.n_owned])
             with self.timers.phase("migration"):
-                sent, received = migrate(dec, self.particles, self.step_count)
+                sent, received = migrate(dec, self.particles, self.step_count, plan=plan,
+                                         far_anywhere=far)
                 self.migrated += sent
                 self.migration.migrated()
             if self.sph is not None and (sent or received):
@@ -298,21 +310,26 @@ class Simulation(Output, Restart, Rebalancing):
                 self.rebalance()
         self._update_dt()
 
-    def _step_check(self, failed, signal):
+    def _step_check(self, failed, signal, far=None):
         """The step's one collective: (failure on any rank, global max |v| along the slab
         axis for `MigrationSchedule.due` or None, global CFL signal speed or None when
-        `signal` is None). A NaN signal counts as infinite, so no rank ever gets a finite
-        time step from a broken state."""
+        `signal` is None, a particle about to skip a slab on any rank or None when `far` is
+        None). A NaN signal counts as infinite, so no rank ever gets a finite time step from
+        a broken state."""
         dec = self.decomposition
         speed = self.migration.local_speed(self.particles, dec.axis if dec else 0)
         local = [float(failed)]
+        if far is not None:
+            local.append(float(far))
         if speed is not None:
             local.append(speed)
         if signal is not None:
             local.append(signal if signal == signal else math.inf)
         out = self.dist.max_array(local)
-        return (out[0] > 0.0, out[1] if speed is not None else None,
-                out[-1] if signal is not None else None)
+        k = 2 if far is not None else 1
+        return (out[0] > 0.0, out[k] if speed is not None else None,
+                out[-1] if signal is not None else None,
+                out[1] > 0.0 if far is not None else None)
 
     def _fail(self, bad):
         p = self.particles

@@ -51,15 +51,11 @@ def _unpack(particles, names, rows):
     return dict(_columns(particles, names, rows))
 
 
-def migrate(decomposition, particles, step=0, hop=False):
-    """Send owned particles to the neighbours that own them now; returns (sent, received).
-
-    With `hop` (after the slab faces moved) a particle owned further away goes one slab
-    towards its owner; call again until nothing moves (`migrate_all`).
-    """
+def plan_migration(decomposition, particles, hop=False):
+    """Local: (rows leaving this slab, the rank each goes to, those of them that would skip a
+    whole slab). With `hop` (after the slab faces moved) a particle owned further away goes
+    one slab towards its owner."""
     dec = decomposition
-    if dec.size == 1:
-        return 0, 0
     x = particles["x"]
     leaving = slab_leavers(x, dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells, dec.lo_cell,
                            dec.hi_cell)
@@ -69,8 +65,25 @@ def migrate(decomposition, particles, step=0, hop=False):
     elif hop:  # one slab towards the owner, the short way round the period
         step = np.where((owner - dec.rank) % dec.size <= dec.size // 2, 1, -1)
         owner = np.where(owner == dec.rank, owner, (dec.rank + step) % dec.size)
-    far = leaving[dec.slab_distance(owner) > 1]
-    if dec.dist.any(len(far) > 0):
+    return leaving, owner, leaving[dec.slab_distance(owner) > 1]
+
+
+def migrate(decomposition, particles, step=0, hop=False, plan=None, far_anywhere=None):
+    """Send owned particles to the neighbours that own them now; returns (sent, received).
+
+    With `hop` (after the slab faces moved) a particle owned further away goes one slab
+    towards its owner; call again until nothing moves (`migrate_all`). A particle that would
+    skip a whole slab stops the run on every rank: decided here by an allreduce, or by the
+    caller, which passes this rank's `plan` (`plan_migration`) and `far_anywhere`, the flag
+    it reduced with other numbers (`Simulation` folds it into the step's one allreduce).
+    """
+    dec = decomposition
+    if dec.size == 1:
+        return 0, 0
+    leaving, owner, far = plan if plan is not None else plan_migration(dec, particles, hop)
+    if far_anywhere is None:
+        far_anywhere = dec.dist.any(len(far) > 0)
+    if far_anywhere:
         gid = int(particles["gid"][far[0]]) if len(far) else -1
         raise RunError(step, gid, "particle jumped over a whole slab in one step (dt too "
                        "large for the slab width, or the particle was thrown out)")
@@ -116,6 +129,8 @@ class MigrationSchedule:
     def __init__(self, dist, lazy):
         self.dist = dist
         self.lazy = lazy and dist.size > 1
+        #: several ranks and no laziness: migration after every step
+        self.every_step = dist.size > 1 and not self.lazy
         self.drift = 0.0  # bound on any particle's move along the axis since the migration
 
     def local_speed(self, particles, axis):

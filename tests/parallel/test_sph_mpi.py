@@ -10,6 +10,7 @@ import pytest
 
 from mpi_util import assert_equals_one_rank, serial, world
 from pmpmsph.bench.scenes import sph_cavity, sph_couette
+from pmpmsph.errors import RunError
 from scenes import sph_bar_1d, sph_dam_break
 
 pytestmark = pytest.mark.mpi
@@ -133,3 +134,25 @@ def test_tl_plate_equals_one_rank(kw):
     ref.run(max_steps=60)
     assert dist.sum(sim.migrated) > 0
     _compare(dist, sim, ref)
+
+
+def test_a_particle_skipping_a_slab_stops_every_rank():
+    """A particle that would skip a whole slab in one step stops the run on every rank with
+    its gid (no rank left waiting in the exchange). The flag rides on the step's one
+    allreduce (`Simulation._step_check`); three ranks or more are needed for a slab between."""
+    dist = world()
+    if dist.size < 3:
+        pytest.skip("needs a slab between two others")
+    sim = sph_bar_1d("verlet").simulation(dist=dist)
+    sim.run(max_steps=5)
+    dec = sim.decomposition
+    gid = -1
+    if dist.rank == 0:  # one of rank 0's particles into the last slab
+        far = dec.origin + (dec.faces[-2] + 0.5) * dec.dx
+        sim.particles["x"][0, 0] = far
+        gid = int(sim.particles["gid"][0])
+    gid = dist.bcast(gid)
+    with pytest.raises(RunError, match="jumped over a whole slab") as err:
+        sim.step()
+    if dist.rank == 0:
+        assert err.value.gid == gid
