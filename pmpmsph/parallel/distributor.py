@@ -65,6 +65,8 @@ class Distributor:
         self.comm = _world() if comm is None else comm
         self.rank = self.comm.Get_rank()
         self.size = self.comm.Get_size()
+        self._flag = np.zeros(1, np.int64)      # the buffers of `any`
+        self._flag_out = np.zeros(1, np.int64)
 
     @property
     def is_root(self):
@@ -111,8 +113,14 @@ class Distributor:
         return out
 
     def any(self, flag):
-        """True on every rank if `flag` is true on any rank (collective decisions, no hangs)."""
-        return bool(self.max(int(bool(flag))))
+        """True on every rank if `flag` is true on any rank (collective decisions, no hangs).
+        On a preallocated buffer (Allreduce): the pickling allreduce of a Python int cost
+        several times more, and the SPH stage asks once or twice a step."""
+        if self.size == 1:
+            return bool(flag)
+        self._flag[0] = 1 if flag else 0
+        self.comm.Allreduce(self._flag, self._flag_out, op=_mpi().MAX)
+        return bool(self._flag_out[0])
 
     def exscan(self, count):
         """Exclusive prefix sum of an integer over ranks (offset of this rank's slice)."""

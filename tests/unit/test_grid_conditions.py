@@ -7,6 +7,8 @@ import pytest
 from pmpmsph.config.case import BC_KINDS
 from pmpmsph.kernels.mpm.grid_bc import BC_CODES, apply_grid_bc, mirror_grid_bc
 from pmpmsph.kernels.mpm.grid_conditions.registry import condition_named, grid_conditions
+from pmpmsph.physics.mpm.boundary import GridBoundaries
+from pmpmsph.scene_api import Scene
 
 DIM = 2
 NORMAL = np.array([0.0, -1.0, 0.0])  # outward normal of a floor
@@ -75,3 +77,25 @@ def test_mirror_makes_the_wall_velocity_what_the_stencil_sees(kind):
 
 def test_friction_does_not_mirror():
     assert condition_named("friction").mirror is None
+
+
+def test_a_gate_acts_until_its_time_and_again_after_going_back():
+    """A boundary with `until` (a gate) is in the active set for time < until only; the set
+    is re-read when time crosses a gate's time, either way (a restart may go back)."""
+    sc = Scene(2, grid=dict(origin=[0, 0], length=[1, 1], cells=[8, 8]),
+               time=dict(end=1.0, cfl=0.5))
+    sc.material("m", model="linear_elastic", E=1e3, nu=0.3, rho=1000)
+    sc.body(name="b", material="m", shape="box", min=[0.2, 0.2], max=[0.4, 0.4], ppc=2)
+    sc.boundary(face="y-", type="fixed")
+    sc.boundary(box=dict(min=[0.5, 0.0], max=[0.5, 1.0]), type="slip", normal=[1, 0],
+                until=0.25)
+    sc.boundary(face="x+", type="slip", until=0.5)
+    sim = sc.simulation()
+    bcs = sim.mpm.bcs
+    assert isinstance(bcs, GridBoundaries)
+    vel, dv = sim.mpm.grid.vel, sim.mpm.grid.dv
+    for time, active in ((0.0, (0, 1, 2)), (0.1, (0, 1, 2)), (0.25, (0, 2)), (0.3, (0, 2)),
+                         (0.5, (0,)), (0.9, (0,)), (0.2, (0, 1, 2)), (0.6, (0,))):
+        bcs.apply(time, vel, dv)
+        assert bcs.active_key == active, time
+        assert len(bcs._arrays[0]) == sum(len(bcs.parts[j][0]) for j in active)

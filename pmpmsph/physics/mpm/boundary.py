@@ -33,6 +33,9 @@ class GridBoundaries:
                         else None for spec in specs]
         self.active_key = None
         self._arrays = None
+        self._until = sorted({s.until for s in specs})  # the times the active set changes
+        self._prev_time = np.inf  # the active set holds for _prev_time <= time < _valid_until
+        self._valid_until = -np.inf
 
     def _build(self, active):
         nodes, kinds, normals, mus, walls = [], [], [], [], []
@@ -50,10 +53,14 @@ class GridBoundaries:
                 np.concatenate(mus), np.concatenate(walls))
 
     def apply(self, time, vel, dv):
-        active = tuple(j for j, s in enumerate(self.specs) if time < s.until)
-        if active != self.active_key:
-            self._arrays = self._build(active)
-            self.active_key = active
+        if not (self._prev_time <= time < self._valid_until):  # the gates' times crossed
+            active = tuple(j for j, s in enumerate(self.specs) if time < s.until)
+            if active != self.active_key:
+                self._arrays = self._build(active)
+                self.active_key = active
+            self._prev_time = time
+            self._valid_until = min((u for u in self._until if u > time), default=np.inf)
+        active = self.active_key
         node, kind, normal, mu, wall = self._arrays
         if len(node):
             apply_grid_bc(self.grid.dim, node, kind, normal, mu, wall, vel, dv)
