@@ -4,6 +4,7 @@ Stages and materials *declare* the fields they need; only declared fields are al
 migrated, copied to halos and written. Owned particles are rows [0, n_owned); halo copies
 (when a later stage asks for them) follow and are never written back.
 """
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import Optional
@@ -57,6 +58,7 @@ class ParticleSet:
         self.n_owned = 0
         self.n_total = 0
         self.capacity = int(capacity)
+        self._byte_views = {}  # (`byte_views`)
         for spec in CORE_FIELDS:
             self.declare(spec)
 
@@ -74,6 +76,20 @@ class ParticleSet:
         arr = np.zeros(self._shape(spec, self.capacity), dtype=spec.dtype)
         self._fill(spec, arr)
         self.arrays[spec.name] = arr
+        self._byte_views = {}
+
+    def byte_views(self, names):
+        """(views, bytes per row): the fields `names` each as a (capacity, bytes per row)
+        uint8 view of its whole array, for packing rows into messages
+        (`kernels.partition.gather_rows`); made again only after the arrays were
+        reallocated (`reserve`, `declare`)."""
+        key = tuple(names)
+        hit = self._byte_views.get(key)
+        if hit is None:
+            views = tuple(self.arrays[n].reshape(
+                self.capacity, math.prod(self.arrays[n].shape[1:])).view(np.uint8) for n in key)
+            hit = self._byte_views[key] = (views, sum(v.shape[1] for v in views))
+        return hit
 
     @staticmethod
     def _fill(spec, arr):
@@ -125,6 +141,7 @@ class ParticleSet:
             new[: self.n_total] = self.arrays[name][: self.n_total]
             self.arrays[name] = new
         self.capacity = capacity
+        self._byte_views = {}
 
     def append(self, values: Mapping[str, np.ndarray]) -> None:
         """Append owned particles given as a dict of arrays (fields not given get defaults)."""

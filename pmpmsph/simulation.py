@@ -158,28 +158,35 @@ class Simulation(Output, Restart, Rebalancing):
                              key="grid.cells" if case.grid else "domain", period=period)
 
     # -- time step --------------------------------------------------------------------------
-    def signal_speed(self):
-        """Global max (c + |v|): from the MPM step's G2P when that saw the final state
-        (pure MPM, no prescribed velocities, not USF), else a pass over the particles."""
+    def _local_signal_speed(self):
+        """This rank's max (c + |v|) over its owned particles (no collective)."""
         p = self.particles
         n = p.n_owned
-        if self._fused_signal[0] == self.step_count:  # already the global maximum
-            return self._fused_signal[1]
         if self.mpm is None and self.sph is not None:
             c = self.sph.signal_speed()
             if c is not None:
-                return self.dist.max(c)
+                return c
         mtypes, mparams = self.materials
-        c = max_signal_speed(self.dim, p["v"][:n], p.deformation(n), p["mat"][:n], mtypes,
-                             mparams)
-        return self.dist.max(c)
+        return max_signal_speed(self.dim, p["v"][:n], p.deformation(n), p["mat"][:n], mtypes,
+                                mparams)
+
+    def signal_speed(self):
+        """Global max (c + |v|): reduced in the step's allreduce when the step computed it
+        (from the MPM step's G2P when that saw the final state: pure MPM, no prescribed
+        velocities, not USF; else a pass over the particles), else reduced here."""
+        if self._fused_signal[0] == self.step_count:  # already the global maximum
+            return self._fused_signal[1]
+        return self.dist.max(self._local_signal_speed())
 
     def stable_dt(self) -> float:
         """CFL limit with Courant number 1: h / max(c + |v|) (and the SPH viscous limit)."""
         c = self.signal_speed()
         limit = self.h / c if c > 0 else math.inf
         if self.sph is not None:
-            limit = min(limit, self.sph.stable_dt())
+            if self._fused_sph_limit[0] == self.step_count:
+                limit = min(limit, self._fused_sph_limit[1])
+            else:
+                limit = min(limit, self.sph.stable_dt())
         return limit
 
     def _initial_dt(self):
@@ -260,7 +267,7 @@ class Simulation(Output, Restart, Rebalancing):
         if self.mpm is not None:
             bad = self.mpm.step(self.dt, self.time)
             if (self.mpm.signal is not None and self.sph is None
-                    and self.prescribed is None and self.case.time.cfl is not None):
+                    and self.prescribed is None):
                 fused = self.mpm.signal
         self.coupling.after_mpm()
         if self.sph is not None:
@@ -282,9 +289,22 @@ class Simulation(Output, Restart, Rebalancing):
                         dec.wrap(self.particles["x"][: self.particles.n_owned])
                     plan = plan_migration(dec, self.particles)
                 far = len(plan[2]) > 0
-        failed, speed, signal, far = self._step_check(bad >= 0, fused, far)
+        # a CFL time step's global numbers ride on the step's allreduce too: the max signal
+        # speed and the SPH stage's limit of the new state (migration and balancing, which
+        # come between, only move particles between ranks: the global values stay)
+        signal, sph_limit = None, None
+        if self.case.time.cfl is not None:
+            signal, sph_limit = 0.0, (math.inf if self.sph is not None else None)
+            if bad < 0:
+                signal = fused if fused is not None else self._local_signal_speed()
+                if self.sph is not None:
+                    sph_limit = self.sph.local_stable_dt()
+        failed, speed, signal, far, sph_limit = self._step_check(bad >= 0, signal, far,
+                                                                 sph_limit)
         if signal is not None:
             self._fused_signal = (self.step_count + 1, signal)
+        if sph_limit is not None:
+            self._fused_sph_limit = (self.step_count + 1, sph_limit)
         if failed:
             self._fail(bad)
         due = self.migration.due(speed, self.dt, dec.dx if dec else 1.0)
@@ -310,12 +330,13 @@ class Simulation(Output, Restart, Rebalancing):
                 self.rebalance()
         self._update_dt()
 
-    def _step_check(self, failed, signal, far=None):
+    def _step_check(self, failed, signal, far=None, sph_limit=None):
         """The step's one collective: (failure on any rank, global max |v| along the slab
         axis for `MigrationSchedule.due` or None, global CFL signal speed or None when
         `signal` is None, a particle about to skip a slab on any rank or None when `far` is
-        None). A NaN signal counts as infinite, so no rank ever gets a finite time step from
-        a broken state."""
+        None, the global minimum of `sph_limit` or None). Every rank passes the same Nones.
+        A NaN signal counts as infinite, so no rank ever gets a finite time step from a
+        broken state."""
         dec = self.decomposition
         speed = self.migration.local_speed(self.particles, dec.axis if dec else 0)
         local = [float(failed)]
@@ -323,13 +344,17 @@ class Simulation(Output, Restart, Rebalancing):
             local.append(float(far))
         if speed is not None:
             local.append(speed)
+        if sph_limit is not None:
+            local.append(-sph_limit)  # (min as a max)
         if signal is not None:
             local.append(signal if signal == signal else math.inf)
         out = self.dist.max_array(local)
         k = 2 if far is not None else 1
+        j = k + (speed is not None)
         return (out[0] > 0.0, out[k] if speed is not None else None,
                 out[-1] if signal is not None else None,
-                out[1] > 0.0 if far is not None else None)
+                out[1] > 0.0 if far is not None else None,
+                -out[j] if sph_limit is not None else None)
 
     def _fail(self, bad):
         p = self.particles
@@ -429,4 +454,5 @@ class Simulation(Output, Restart, Rebalancing):
     case_overrides = ()
     case_dir = None
     _last_checkpoint_step = -1
-    _fused_signal = (-1, 0.0)  # (step it belongs to, global max (c + |v|) from G2P)
+    _fused_signal = (-1, 0.0)  # (step it belongs to, global max (c + |v|), step-reduced)
+    _fused_sph_limit = (-1, math.inf)  # (step it belongs to, the SPH stage's global limit)

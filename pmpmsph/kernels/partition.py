@@ -64,3 +64,32 @@ def cell_keys(x, origin, inv_dx, strides):
             k += int(math.floor((x[p, a] - origin[a]) * inv_dx)) * strides[a]
         keys[p] = k
     return keys
+
+
+@njit
+def gather_rows(views, index, out):
+    """Pack rows `index` of several fields side by side: `views` are the fields as (rows,
+    bytes per row) uint8 arrays (`ParticleSet.byte_views`), `out` is (len(index), their total
+    bytes). One compiled pass instead of a fancy-indexed copy per field (the halo refresh
+    and migration pack a dozen fields two or three times a step)."""
+    pos = 0
+    for view in views:
+        width = view.shape[1]
+        for r in range(index.shape[0]):
+            src = index[r]
+            for b in range(width):
+                out[r, pos + b] = view[src, b]
+        pos += width
+
+
+@njit
+def scatter_rows(views, first, rows):
+    """The inverse of `gather_rows` into consecutive rows: packed row r goes to row
+    first + r of every field."""
+    pos = 0
+    for view in views:
+        width = view.shape[1]
+        for r in range(rows.shape[0]):
+            for b in range(width):
+                view[first + r, b] = rows[r, pos + b]
+        pos += width

@@ -38,7 +38,7 @@ class GridHalo:
         self.axis = decomposition.axis
         off = int(grid.offset[self.axis])
         self.bytes_sent = 0
-        self._buffers = {}  # (route name, shapes) -> [(sendbuf, recvbuf)] per neighbour
+        self._buffers = {}  # (route name, array ids) -> buffers and views (`_plan`)
         # (neighbour, slice sent, slice received, side of our face) of each exchange, in
         # local node indices, made once: reduce sends the ghosts to their owner, broadcast
         # the owned shared nodes back, sum sends and receives every node shared with the
@@ -74,36 +74,48 @@ class GridHalo:
         routes = self.routes[name]
         if not routes:
             return
-        key = (name, tuple(a.shape for a in arrays))
-        bufs = self._buffers.get(key)
-        if bufs is None:
-            bufs = [(np.empty(sum(self._view(a, out_sl).size for a in arrays)),
-                     np.empty(sum(self._view(a, in_sl).size for a in arrays)))
-                    for _, out_sl, in_sl, _ in routes]
-            self._buffers[key] = bufs
+        plan = self._plan(name, arrays)
         reqs = []
-        for (nb, out_sl, _, side), (sendbuf, recvbuf) in zip(routes, bufs):
-            pos = 0
-            for a in arrays:
-                view = self._view(a, out_sl)
-                sendbuf[pos:pos + view.size].reshape(view.shape)[...] = view
-                pos += view.size
+        for (nb, _, _, side), (sendbuf, recvbuf, outgoing, _) in zip(routes, plan):
+            for view, part in outgoing:
+                part[...] = view
             # tagged with the sender's face: what arrives on our low face left the
             # neighbour's high face
             reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag + 100 * (1 - side)))
             reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=tag + 100 * side))
             self.bytes_sent += sendbuf.nbytes
         wait_all(reqs)
-        for (_, _, in_sl, _), (_, recvbuf) in zip(routes, bufs):
-            pos = 0
-            for a in arrays:
-                view = self._view(a, in_sl)
-                part = recvbuf[pos:pos + view.size].reshape(view.shape)
-                pos += view.size
+        for _, _, _, incoming in plan:
+            for view, part in incoming:
                 if combine:
                     view += part
                 else:
                     view[...] = part
+
+    def _plan(self, name, arrays):
+        """Per route of `name`: (send buffer, receive buffer, [(node slice of an array, its
+        part of the send buffer)], the same for the receive buffer), made once per route name
+        and set of arrays and reused (the views keep the arrays alive, so their ids are not
+        reused while cached; a few sets per name: P2G sums with and without forces)."""
+        key = (name, tuple(id(a) for a in arrays))
+        plan = self._buffers.get(key)
+        if plan is None:
+            if len(self._buffers) > 16:  # arrays replaced (a new grid): forget the old ones
+                self._buffers.clear()
+            plan = []
+            for _, out_sl, in_sl, _ in self.routes[name]:
+                sides = []
+                for sl in (out_sl, in_sl):
+                    views = [self._view(a, sl) for a in arrays]
+                    buf = np.empty(sum(v.size for v in views))
+                    parts, pos = [], 0
+                    for v in views:
+                        parts.append((v, buf[pos:pos + v.size].reshape(v.shape)))
+                        pos += v.size
+                    sides.append((buf, parts))
+                plan.append((sides[0][0], sides[1][0], sides[0][1], sides[1][1]))
+            self._buffers[key] = plan
+        return plan
 
     def sum(self, arrays):
         """Full sums on owned and ghost nodes alike, in one exchange (module doc)."""

@@ -10,27 +10,18 @@ import math
 import numpy as np
 
 from ..errors import RunError
-from ..kernels.partition import max_abs_column, slab_leavers
+from ..kernels.partition import gather_rows, max_abs_column, slab_leavers
 from .distributor import exchange_rows
 
 TAG_DATA = 22
 
 
-def _row_bytes(arr):
-    """Bytes of one particle's row of a field array."""
-    return math.prod(arr.shape[1:]) * arr.itemsize
-
-
 def _pack(particles, names, idx):
     """The rows `idx` of fields `names`, side by side in one (len(idx), bytes) array."""
-    arrays = [particles[name] for name in names]
-    out = np.empty((len(idx), sum(_row_bytes(a) for a in arrays)), np.uint8)
-    pos = 0
-    for arr in arrays:
-        width = _row_bytes(arr)
-        if len(idx):
-            out[:, pos:pos + width] = arr[idx].reshape(len(idx), -1).view(np.uint8)
-        pos += width
+    views, width = particles.byte_views(names)
+    out = np.empty((len(idx), width), np.uint8)
+    if len(idx):
+        gather_rows(views, idx, out)
     return out
 
 
@@ -88,7 +79,7 @@ def migrate(decomposition, particles, step=0, hop=False, plan=None, far_anywhere
         raise RunError(step, gid, "particle jumped over a whole slab in one step (dt too "
                        "large for the slab width, or the particle was thrown out)")
     names = particles.fields(migrate=True)
-    width = sum(_row_bytes(particles[name]) for name in names)
+    width = particles.byte_views(names)[1]
     sends = []
     for nb in sorted({nb for _, nb, _ in dec.routes()}):  # (on two periodic ranks: once)
         sends.append((nb, TAG_DATA, TAG_DATA, _pack(particles, names, leaving[owner == nb])))

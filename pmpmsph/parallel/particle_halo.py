@@ -9,7 +9,8 @@ import numpy as np
 
 from ..errors import ConfigError
 from .distributor import exchange_rows, wait_all
-from .migration import _columns, _pack, _row_bytes, _unpack
+from ..kernels.partition import scatter_rows
+from .migration import _pack, _unpack
 
 TAG_HALO_DATA = 32
 TAG_HALO_REFRESH = 33
@@ -103,7 +104,7 @@ class ParticleHalo:
     def _exchange_neighbours(self):
         p = self.particles
         lists = self.send_lists()
-        width = sum(_row_bytes(p.arrays[name]) for name in self.names)
+        width = p.byte_views(self.names)[1]
         # sent from my face `side`, a message reaches the neighbour's opposite face
         sends = [(nb, TAG_HALO_DATA + 100 * side, TAG_HALO_DATA + 100 * (1 - side),
                   _pack(p, self.names, idx)) for (side, nb, _shift), idx in lists.items()]
@@ -141,7 +142,7 @@ class ParticleHalo:
             if rows.size:
                 reqs.append(comm.Isend(rows, dest=nb, tag=TAG_HALO_REFRESH + 100 * side))
                 self.bytes_sent += rows.nbytes
-        width = sum(_row_bytes(p.arrays[nm]) for nm in names)
+        views, width = p.byte_views(names)
         for (side, nb, shift), first, count in recv_rows:
             buf = np.empty((count, width), np.uint8)
             bufs.append((first, shift, buf))
@@ -150,7 +151,6 @@ class ParticleHalo:
         wait_all(reqs)
         for first, shift, buf in bufs:
             if buf.shape[0]:
-                for name, arr in _columns(p, names, buf):
-                    p.arrays[name][first:first + buf.shape[0]] = arr
-                    if name == "x" and shift != 0.0:
-                        p.arrays[name][first:first + buf.shape[0], self.dec.axis] += shift
+                scatter_rows(views, first, buf)
+                if shift != 0.0 and "x" in names:  # across the periodic wrap
+                    p.arrays["x"][first:first + buf.shape[0], self.dec.axis] += shift

@@ -539,11 +539,8 @@ class SPHStage:
         p = self.p
         return max_signal(self.dim_tag, p.n_owned, p["cs"], p["v"])
 
-    def stable_dt(self):
-        """Viscous limit 0.125 h^2 / nu of the fluids, and 1 / max |drho/dt| / rho (times the
-        caller's Courant number: the density changes by at most that fraction in a step, so
-        a violent expansion cannot drive the continuity density through zero). Global
-        (collective when parallel); the CFL limit is the caller's."""
+    def local_stable_dt(self):
+        """This rank's part of `stable_dt` (no collective)."""
         limit = min((m.max_stable_viscous_dt(self.h) for m in self.case.materials.values()),
                     default=np.inf)
         p = self.p
@@ -551,6 +548,14 @@ class SPHStage:
             rate = float(np.max(np.abs(p["drho"]) / p["rho"]))
             if rate > 0:
                 limit = min(limit, 1.0 / rate)
+        return limit
+
+    def stable_dt(self):
+        """Viscous limit 0.125 h^2 / nu of the fluids, and 1 / max |drho/dt| / rho (times the
+        caller's Courant number: the density changes by at most that fraction in a step, so
+        a violent expansion cannot drive the continuity density through zero). Global
+        (collective when parallel); the CFL limit is the caller's."""
+        limit = self.local_stable_dt()
         if self.halo_enabled and self.dist.size > 1:
             limit = self.dist.min(limit)
         return limit
