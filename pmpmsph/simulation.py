@@ -339,22 +339,17 @@ class Simulation(Output, Restart, Rebalancing):
         broken state."""
         dec = self.decomposition
         speed = self.migration.local_speed(self.particles, dec.axis if dec else 0)
-        local = [float(failed)]
-        if far is not None:
-            local.append(float(far))
-        if speed is not None:
-            local.append(speed)
-        if sph_limit is not None:
-            local.append(-sph_limit)  # (min as a max)
-        if signal is not None:
-            local.append(signal if signal == signal else math.inf)
-        out = self.dist.max_array(local)
-        k = 2 if far is not None else 1
-        j = k + (speed is not None)
-        return (out[0] > 0.0, out[k] if speed is not None else None,
-                out[-1] if signal is not None else None,
-                out[1] > 0.0 if far is not None else None,
-                -out[j] if sph_limit is not None else None)
+        # every entry as a maximum: a minimum as the max of its negative, flags as 0 / 1
+        entries = {"failed": float(failed), "far": None if far is None else float(far),
+                   "speed": speed,
+                   "sph_limit": None if sph_limit is None else -sph_limit,
+                   "signal": None if signal is None else
+                   (signal if signal == signal else math.inf)}
+        present = [k for k, value in entries.items() if value is not None]
+        out = dict(zip(present, self.dist.max_array([entries[k] for k in present])))
+        return (out["failed"] > 0.0, out.get("speed"), out.get("signal"),
+                out["far"] > 0.0 if "far" in out else None,
+                -out["sph_limit"] if "sph_limit" in out else None)
 
     def _fail(self, bad):
         p = self.particles

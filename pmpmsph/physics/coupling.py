@@ -226,10 +226,16 @@ class SeedInterface(Uncoupled):
         self.gravity = np.array(case.gravity, float)
         self.reorders = 0
         self.handed_over = 0
+        self._mark_buffers = {}  # (`_marks`)
 
     def _marks(self, material):
         g = self.mpm.grid
-        mark = np.zeros((1, g.n_nodes))
+        # one array per material, reused: the grid halo keeps its exchange plan per array
+        mark = self._mark_buffers.get(material)
+        if mark is None or mark.shape[1] != g.n_nodes:
+            mark = self._mark_buffers[material] = np.zeros((1, g.n_nodes))
+        else:
+            mark[...] = 0.0
         p = self.p
         shape = np.array(g.shape, np.int64)
         mark_mpm_cells(self.dim_tag, p.n_owned, p["x"], p["method"], p["mat"], material,
