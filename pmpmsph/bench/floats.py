@@ -38,10 +38,11 @@ BLOCKS = ((0.10, 0.06, 0.80, 0.010), (0.08, 0.04, 0.50, 0.020), (0.14, 0.04, 0.9
 
 def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, depth=0.2,
                 spacing=0.005, end=3.0, cell_spacings=4, velocity_update="apic",
-                contact_gap=1.5):
+                contact="multi", shape="gimp"):
     """The scene of one float (module doc); grid cells of `cell_spacings` spacings; the MPM
     bodies' `velocity_update` ("apic", or "pic": the FLIP blend at 0); with MPM water, the
-    multi-field contact's `contact_gap` (0: one velocity field for water and block)."""
+    `contact` "multi" (one velocity field per body, frictionless contact) or "single" (one
+    velocity field for water and block); the MPM bodies' `shape` function."""
     block_method, water_method = combo.split("_in_")
     sp = spacing
     cell = tank / round(tank / (cell_spacings * sp))  # nodes on the tank's faces
@@ -55,14 +56,14 @@ def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, d
                     time=dict(end=end, cfl=0.2), gravity=[0.0, -G],
                     parallel=dict(balance_every=0))
     if "mpm" in combo:
-        mpm = dict(shape="gimp", transfer="musl")
+        mpm = dict(shape=shape, transfer="musl")
         if velocity_update == "pic":
             mpm["flip"] = 0.0
         else:
             mpm["velocity_update"] = velocity_update
         if water_method == "mpm":
-            if contact_gap > 0.0:  # one velocity field per body, frictionless contact
-                mpm.update(contact="multi", friction=0.0, contact_gap=contact_gap)
+            if contact == "multi":  # one velocity field per body, frictionless contact
+                mpm.update(contact="multi", friction=0.0)
             if not coupled:
                 mpm["hydrostatic"] = True
         sections["mpm"] = mpm
@@ -178,7 +179,8 @@ def run(args):
             try:
                 r = float_run(combo, width=w, height=h, ratio=s, drop=drop,
                               spacing=args.spacing, end=args.end,
-                              velocity_update=args.velocity_update)
+                              velocity_update=args.velocity_update,
+                              cell_spacings=args.cell_spacings)
             except Exception as exc:  # a failed run is a row of the table, not the end
                 r = dict(combo=combo, fraction=float("nan"), reference=float("nan"),
                          error=float("nan"), settle=float("nan"), failure=str(exc))

@@ -81,7 +81,7 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
         sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping)
         # water and plate each in their own velocity field, in frictionless contact (an
         # SPH solid takes part in P2G as a body of its own: physics/sph/solid_in_fluid.py)
-        mpm.update(hydrostatic=True, velocity_update="apic", contact="multi", contact_gap=1.5)
+        mpm.update(hydrostatic=True, velocity_update="apic", contact="multi")
         if plate_method == "mpm":
             sph = None
     space = (dict(grid=dict(origin=[x0, -below], cell_size=cell, cells=[nx, ny]), mpm=mpm)

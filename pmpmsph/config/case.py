@@ -65,8 +65,6 @@ class MPMSpec:
     mass_cutoff: float = 1e-10  # nodes lighter than this get no velocity (thesis listing 2)
     contact: str = "single"    # single velocity field, or one per body (Bardenhagen)
     friction: float = 0.0      # Coulomb coefficient of multi-field contact
-    contact_gap: float = 1.0   # multi-field contact acts within this many times the
-    # nodal centre-of-mass separation of two touching bodies (Nairn's displacement check)
     cpdi_reach: int = 2        # CPDI: the largest domain half-extent (cells) the grid covers
     hydrostatic: bool = False  # MPM fluid bodies start at rest in the hydrostatic state
     deformation: str = "auto"  # what an MPM particle stores of its motion: "F" (the full

@@ -121,6 +121,9 @@ def case_from_dict(data, name="case", text=""):
     grid = _grid(grid_t, dim) if grid_t is not None else None
 
     mpm_t = root.sub("mpm", {})
+    if mpm_t.has("contact_gap"):
+        raise ConfigError(mpm_t.key("contact_gap"), "no longer a setting: multi-field contact "
+                          "acts where the bodies' particle surfaces meet (no gap to choose)")
     mpm = MPMSpec(
         shape=mpm_t.string("shape", "linear", choices=SHAPES),
         transfer=mpm_t.string("transfer", "usl", choices=TRANSFERS),
@@ -130,7 +133,6 @@ def case_from_dict(data, name="case", text=""):
         mass_cutoff=mpm_t.number("mass_cutoff", 1e-10, min=0.0),
         contact=mpm_t.string("contact", "single", choices=CONTACTS),
         friction=mpm_t.number("friction", 0.0, min=0.0),
-        contact_gap=mpm_t.number("contact_gap", 1.0, min=0.0),
         cpdi_reach=mpm_t.number("cpdi_reach", 2, integer=True, min=1, max=8),
         deformation=mpm_t.string("deformation", "auto", choices=("auto", "F", "J")),
         hydrostatic=mpm_t.boolean("hydrostatic", False),

@@ -69,8 +69,9 @@ class GridHalo:
 
     def _exchange(self, arrays, name, tag, combine):
         """Send each neighbour the node slice `out` of every array and put what it sends into
-        the slice `in` (`self.routes[name]`: (neighbour, out, in, side) per face), adding it
-        with `combine`. Buffers are made once per (`name`, array shapes) and reused."""
+        the slice `in` (`self.routes[name]`: (neighbour, out, in, side) per face), combined
+        with `combine` (a ufunc such as np.add; None: copied). Buffers are made once per
+        (`name`, array shapes) and reused."""
         routes = self.routes[name]
         if not routes:
             return
@@ -87,8 +88,8 @@ class GridHalo:
         wait_all(reqs)
         for _, _, _, incoming in plan:
             for view, part in incoming:
-                if combine:
-                    view += part
+                if combine is not None:
+                    combine(view, part, out=view)
                 else:
                     view[...] = part
 
@@ -123,12 +124,20 @@ class GridHalo:
             self.reduce(arrays)
             self.broadcast(arrays)
             return
-        self._exchange(arrays, "sum", TAG_SUM, combine=True)
+        self._exchange(arrays, "sum", TAG_SUM, combine=np.add)
 
     def reduce(self, arrays):
         """Add every ghost node's values into its owner (arrays: nodal accumulators)."""
-        self._exchange(arrays, "reduce", TAG_REDUCE, combine=True)
+        self._exchange(arrays, "reduce", TAG_REDUCE, combine=np.add)
 
     def broadcast(self, arrays):
         """Copy the owners' values into the ghost nodes."""
-        self._exchange(arrays, "broadcast", TAG_BCAST, combine=False)
+        self._exchange(arrays, "broadcast", TAG_BCAST, combine=None)
+
+    def maximum(self, arrays):
+        """The largest value over all ranks on owned and ghost nodes alike (as `sum` sums)."""
+        if not self.pairwise:
+            self._exchange(arrays, "reduce", TAG_REDUCE, combine=np.maximum)
+            self.broadcast(arrays)
+            return
+        self._exchange(arrays, "sum", TAG_SUM, combine=np.maximum)

@@ -77,10 +77,12 @@ def test_bars_colliding_at_a_fifth_of_the_wave_speed():
     a = p["body"] == 0
     va = (p["mass"][a] * p["v"][a, 0]).sum() / p["mass"][a].sum()
     assert va < 0  # bar a rebounded
-    # the README's numbers: rebound 0.902 of the impact speed, energy 0.887 of the initial
-    # after separation, never above it
-    assert abs(-va / (0.2 * c) - 0.902) < 0.02
-    assert abs(sim.diagnostics()["total"] / e0 - 0.887) < 0.01
+    # measured: rebound 0.912 of the impact speed, energy 0.905 of the initial after
+    # separation (0.902 and 0.887 with the contact's earlier centre-of-mass gap check, which
+    # acted before the surfaces met), never above it; the nearest particle centres of the
+    # two bars 0.70 spacing apart
+    assert abs(-va / (0.2 * c) - 0.912) < 0.02
+    assert abs(sim.diagnostics()["total"] / e0 - 0.905) < 0.01
     assert e_max[0] <= e0 * (1.0 + 1e-12)
     assert p["x"][a, 0].max() < p["x"][~a, 0].min()  # and they do not interpenetrate
 

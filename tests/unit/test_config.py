@@ -63,6 +63,13 @@ def test_bad_values_name_their_key(old, new, key):
     assert err.value.key == key
 
 
+def test_the_retired_contact_gap_says_why():
+    text = GOOD.replace("[time]", '[mpm]\ncontact = "multi"\ncontact_gap = 1.5\n[time]')
+    with pytest.raises(ConfigError) as err:
+        load_case_text(text)
+    assert err.value.key == "mpm.contact_gap" and "particle surfaces" in str(err.value)
+
+
 def test_toml_syntax_error():
     with pytest.raises(ConfigError) as err:
         load_case_text(GOOD + "\n[grid\n")

@@ -9,18 +9,19 @@ grid velocity field in frictionless contact with the water's).
 Reference: Archimedes' principle in the Tait water at rest, for the seeded lattice body
 (test_coupled_fsi.py's archimedes_draft_lattice: each point's square cell) and the exact
 triangle of the seeded mass; drafts are the far-field surface minus the block's bottom face.
-Measured (this build, `[mpm] contact_gap = 1.5` as in the case):
-  spacing 0.01 (this test), t = 5-6 s: mean draft 0.1136 (0.1135-0.1136) against 0.1137
-    (lattice, -0.1 %) and 0.1104 (triangle, +2.9 %); the block sinks from 0.110 (0.1110 at
-    t = 2, 0.1133 at t = 4.5) and is at rest by t = 5.5 (kinetic energy 4e-6 J at t = 6);
-    total energy 83.37 J after the first step, 83.58 J at most (t = 2, the contact's work),
-    83.15 J at t = 6; the nearest water point 0.90 spacing from a block particle; about 35 s
-    of run on one core.
+Measured (this build: the grid contact acts where the particle surfaces meet,
+kernels/mpm/contact.py):
+  spacing 0.01 (this test), t = 5-6 s: mean draft 0.1144 (0.1143-0.1144) against 0.1137
+    (lattice, +0.6 %) and 0.1104 (triangle, +3.6 %); total energy 83.37 J after the first
+    step, 82.87 J at t = 6, kinetic energy 4e-6 J at t = 6; the nearest water point 0.88
+    spacing from a block particle; about 30 s of run on one core. With the earlier
+    centre-of-mass gap check at 1.5 (the case's setting then): 0.1136 (-0.1 %), 0.90 spacing.
   spacing 0.005 (the case): see cases/coupled_sph_solid_float.toml.
-Variants at spacing 0.01 (the comparisons of physics/sph/solid_in_fluid.py): with the default
-contact_gap = 1 the water row below the block closes in on it (0.34 spacing at t = 2, 0.04
-at t = 4.8) and the block creeps past Archimedes (0.1126 over t = 1.5-2, 0.1142 at t = 4.8,
-still sinking); without the grid contact (mpm.contact = "single": the pressure pairs alone)
+Variants at spacing 0.01 (the comparisons of physics/sph/solid_in_fluid.py), with the
+centre-of-mass gap check: at 1 the water row below the block closes in on it (0.34
+spacing at t = 2, 0.04 at t = 4.8) and the block creeps past Archimedes (0.1126 over
+t = 1.5-2, 0.1142 at t = 4.8, still sinking); without the grid contact
+(mpm.contact = "single": the pressure pairs alone)
 it sinks at a steady 1 mm/s (0.1145 at t = 4.8, 20 water points inside the block's
 lattice); with the contact alone (no pressure pairs) at 3 mm/s, 24 water points inside its
 lattice by t = 1.8 (draft 0.1145); with the solid's velocity gradient summed over the water

@@ -63,7 +63,7 @@ def _layout(dim_tag, kind_tag, strides, offset, n_nodes, inv_dx):
 
 @njit
 def p2g_affine(dim_tag, kind_tag, mls, x, v, C, mass, vol, sigma, fext, lp, F, pfield, origin,
-               offset, inv_dx, strides, gmass, gmom, gforce, gmgrad, gmx, force_dt):
+               offset, inv_dx, strides, gmass, gmom, gforce, gmgrad, force_dt):
     """P2G with the affine momentum m_p C_p (x_I - x_p) (Jiang 2015 eq. 12).
 
     The force of node I is sum_p N_I f_p - vol_p sigma_p g_I with g_I = grad N_I (APIC) or
@@ -123,8 +123,6 @@ def p2g_affine(dim_tag, kind_tag, mls, x, v, C, mass, vol, sigma, fext, lp, F, p
                                 gmgrad[fld, node, a] += m * (d0[i] * w1[j] * w2[k] if a == 0
                                                              else w0[i] * d1[j] * w2[k] if a == 1
                                                              else w0[i] * w1[j] * d2[k]) * inv_dx
-                            if gmx is not None:
-                                gmx[fld, node, a] += N * m * x[p, a]
 
 
 @njit

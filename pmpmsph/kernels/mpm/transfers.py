@@ -16,7 +16,7 @@ from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 @njit
 def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, offset,
-        inv_dx, strides, gmass, gmom, gforce, gmgrad, gmx, force_dt):
+        inv_dx, strides, gmass, gmom, gforce, gmgrad, force_dt):
     """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65).
 
     Internal force of node I: -sum_p vol_p sigma_p . grad N_I(x_p); external: sum_p N_I f_p.
@@ -25,8 +25,7 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
     `fext` (particle forces), `lp` (GIMP/CPDI half-widths; None for other shapes), `F` (the
     deformation gradient that shapes a CPDI domain; None for other shapes), `pfield` (the
     velocity field of each particle for multi-field contact; None: field 0), `gmgrad` (mass
-    gradients sum_p m_p grad N_I for contact normals), `gmx` (mass-weighted positions
-    sum_p N_I m_p x_p, for the contact gap). `dim_tag`/`kind_tag` are the
+    gradients sum_p m_p grad N_I for contact normals). `dim_tag`/`kind_tag` are the
     compile-time dimension and shape function (`static_tags`); `origin` is the position of
     global node 0 (`Grid.node0`) and `offset` the global index of local node 0 per axis.
     `force_dt` = dt folds the forces into the momentum (gmom receives p + dt f, gforce is
@@ -128,17 +127,12 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
                                 gforce[fld, node, 1] += f1
                             if dim > 2:
                                 gforce[fld, node, 2] += f2
-                        if gmgrad is not None or gmx is not None:  # multi-field contact
-                            N = w0[i] * w1[j] * w2[k]
-                            if gmgrad is not None:
-                                gmgrad[fld, node, 0] += m * d0[i] * w1[j] * w2[k] * inv_dx
-                                if dim > 1:
-                                    gmgrad[fld, node, 1] += m * w0[i] * d1[j] * w2[k] * inv_dx
-                                if dim > 2:
-                                    gmgrad[fld, node, 2] += m * w0[i] * w1[j] * d2[k] * inv_dx
-                            if gmx is not None:
-                                for a in range(dim):
-                                    gmx[fld, node, a] += N * m * x[p, a]
+                        if gmgrad is not None:  # multi-field contact's normals
+                            gmgrad[fld, node, 0] += m * d0[i] * w1[j] * w2[k] * inv_dx
+                            if dim > 1:
+                                gmgrad[fld, node, 1] += m * w0[i] * d1[j] * w2[k] * inv_dx
+                            if dim > 2:
+                                gmgrad[fld, node, 2] += m * w0[i] * w1[j] * d2[k] * inv_dx
 
 
 MOMENTUM, WITH_FORCE, FOLDED = 0, 1, 2

@@ -61,14 +61,17 @@ class Grid:
         self.force = np.zeros((nf, nn, d))
         self.vel = np.zeros((nf, nn, d))
         self.dv = np.zeros((nf, nn, d))
-        self.mgrad = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
-        self.mx = np.zeros((nf, nn, d)) if with_normals else np.zeros((nf, 0, d))
+        # multi-field contact: mass gradients, the normals made of them and each field's
+        # reach along its normal (kernels/mpm/contact.py)
+        self.mgrad = np.zeros((nf, nn if with_normals else 0, d))
+        self.normals = np.zeros((nf, nn if with_normals else 0, d))
+        self.reach = np.zeros((nf, nn if with_normals else 0))
         self._reached = (0, 0)  # the layers the last `work_range` call's rows reach
         #: the domain and the band around it in which particles may be (one cell outside)
         self.lo = self.global_origin - self.dx
         self.hi = np.array(spec.upper) + self.dx
 
-    def fold_periodic(self, arrays):
+    def fold_periodic(self, arrays, combine=np.add):
         """Make the grid periodic along `folded` (axes whose wrap is inside the rank): padded
         node g and g + cells are one node, so the nodal sums of the padded layers beyond each
         end are added into the nodes they stand for and the full sums copied back. After
@@ -85,7 +88,8 @@ class Grid:
                     index_n = [slice(None)] * blk.ndim
                     index_i[1 + a] = image
                     index_n[1 + a] = node
-                    blk[tuple(index_n)] += blk[tuple(index_i)]
+                    combine(blk[tuple(index_n)], blk[tuple(index_i)],
+                            out=blk[tuple(index_n)])
                 for image, node in pairs:
                     index_i = [slice(None)] * blk.ndim
                     index_n = [slice(None)] * blk.ndim
@@ -105,7 +109,6 @@ class Grid:
         self.force[:, sl] = 0.0
         if self.mgrad.shape[1]:
             self.mgrad[:, sl] = 0.0
-            self.mx[:, sl] = 0.0
 
     def work_range(self, x, n, margin, keep_lo=0, keep_hi=0):
         """Flat node range [a, b) to reset and solve before a P2G of the rows x[:n]: the node

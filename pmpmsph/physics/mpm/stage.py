@@ -17,7 +17,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from ...kernels.mpm.contact import multi_field_contact, touching_separation
+from ...kernels.mpm.contact import contact_normals, multi_field_contact, surface_reach
 from ...kernels.coupling import gather_increment, grid_force_kick
 from ...kernels.mpm.transfers import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
 from ...kernels.mpm.affine import g2p_affine, p2g_affine
@@ -48,6 +48,10 @@ class MPMStage:
         self.shape = shape_named(spec.shape)
         self.kind = self.shape.code
         self.tags = static_tags(self.dim, self.kind)
+        # the nodes a particle can reach, cells either side (at least its stencil's half
+        # width and the widest particle domain)
+        self._reach_support = max(self.shape.support,
+                                  0.5 * self.shape.width + self.shape.half_width)
         self.transfer = spec.transfer
         self.scheme = TRANSFER_SCHEMES[spec.transfer]()  # the order of the passes
         self.flip = spec.flip
@@ -59,10 +63,12 @@ class MPMStage:
         self.friction = spec.friction
         nfields = len(case.bodies) if self.multi else 1
         self.nfields = nfields
+        #: per velocity field (one per body with multi-field contact): a fluid's?
+        self._fluid_field = np.array([case.materials[b.material].fluid for b in case.bodies]
+                                     if self.multi else [False])
         self.halo_enabled = True
         self.timers = timers if timers is not None else Timers()
         self.set_decomposition(decomposition)
-        self.contact_gap = spec.contact_gap * self._contact_gap() if self.multi else 0.0
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
         self.mtypes, self.mparams = materials
@@ -149,15 +155,6 @@ class MPMStage:
         finally:
             self.halo_enabled = True
 
-    def _contact_gap(self):
-        """Displacement-check threshold of multi-field contact for this shape function."""
-        def weight(r):  # weight of the node at 0 seen from a particle at distance r
-            base, w, _ = self.shape.contact_weights(10.0 + r, 0.25)
-            k = 10 - base
-            return w[k] if 0 <= k < 4 else 0.0
-
-        return touching_separation(weight, self.grid.dx, self.shape.support)
-
     @staticmethod
     def fields(case):
         """Fields this stage needs beyond the core ones."""
@@ -226,7 +223,7 @@ class MPMStage:
                                None if pfield is None else pfield[lo:hi], g.node0, g.offset,
                                g.inv_dx, g.strides, g.mass, g.mom,
                                g.force if force and not fold else None,
-                               g.mgrad if self.multi else None, g.mx if self.multi else None,
+                               g.mgrad if self.multi else None,
                                dt if fold and force else None)
                     continue
                 p2g(*self.tags, p["x"][lo:hi], p["v"][lo:hi], p["mass"][lo:hi],
@@ -235,11 +232,11 @@ class MPMStage:
                     None if pfield is None else pfield[lo:hi], g.node0, g.offset,
                     g.inv_dx, g.strides, g.mass, g.mom,
                     g.force if force and not fold else None,
-                    g.mgrad if self.multi else None, g.mx if self.multi else None,
+                    g.mgrad if self.multi else None,
                     dt if fold and force else None)
         sums = [g.mass, g.mom] + ([g.force] if with_force and not fold else [])
         if self.multi:
-            sums += [g.mgrad, g.mx]
+            sums.append(g.mgrad)
         if self.halo_enabled:  # ghosts get the full sums too, so no broadcast after the solve
             with t.phase("halo"):
                 self.halo.sum(sums)
@@ -261,8 +258,7 @@ class MPMStage:
                 dvc = self._contact_change()
                 dvc[:, lo:hi] = g.vel[:, lo:hi]
             if self.multi:
-                multi_field_contact(self.dim, g.mass, g.mgrad, g.mx, g.vel, g.dv,
-                                    self.friction, self.mass_cutoff, self.contact_gap)
+                self._contact(dt)
             if gather:  # (outside the span dvc is stale, but no particle's stencil is there)
                 np.subtract(g.vel[:, lo:hi], dvc[:, lo:hi], out=dvc[:, lo:hi])
             # node-local: ghost nodes, holding the full sums (`GridHalo.sum`), get the
@@ -277,6 +273,24 @@ class MPMStage:
         # (the ghosts hold the full nodal mass and force too, from `GridHalo.sum`)
         if with_force:
             self.interface.after_grid_forces(self, dt)
+
+    def _contact(self, dt):
+        """Multi-field contact on the solved velocities (kernels/mpm/contact.py): normals
+        from the summed mass gradients, each field's reach from its particles (the largest
+        over ranks and periodic images), then the contact itself."""
+        g, p = self.grid, self.p
+        contact_normals(self.dim, g.mass, g.mgrad, self._fluid_field, self.mass_cutoff,
+                        g.normals)
+        g.reach.fill(-np.inf)
+        n = self.n_p2g
+        surface_reach(self.dim, p["x"][:n], p["vol"][:n], p["body"][:n], g.node0, g.offset,
+                      g.inv_dx, g.strides, self._reach_support, g.normals, g.reach)
+        if self.halo_enabled:  # (inside the "grid" phase)
+            self.halo.maximum([g.reach])
+        if g.folded:
+            g.fold_periodic([g.reach], np.maximum)
+        multi_field_contact(self.dim, g.mass, g.normals, g.reach, g.vel, g.dv, self.friction,
+                            self.mass_cutoff, dt)
 
     def _gradients(self, n):
         """A reused (n, 3, 3) array for the velocity gradients of an affine G2P."""

@@ -34,20 +34,23 @@ The rule, automatic in a coupled scene; (2) needs one velocity field per body
      v_p += sum_I N_I dv_c,I (kernels/coupling.py, `gather_increment`), so the fluid's loss
      of momentum is exactly the solid's gain (sum_p N_Ip m_p = m_I). The fluid's field holds
      the fluid only: the two never mix velocities on the grid. The contact acts where the two
-     fields' nodal centres of mass are closer than 1.5 times their separation when the
-     bodies touch (`[mpm] contact_gap = 1.5`, the case's): at the default 1 (Nairn's check)
-     it acts only once the lattices overlap, and the water row below the block closed in on
-     the block's bottom row (to 0.34 spacing by t = 2 s, 0.04 by t = 4.8 s) while the block
-     crept past Archimedes (0.1142 at t = 4.8 s, still sinking).
-     Measured (spacing 0.01, contact_gap = 1.5): the block sinks from a draft of 0.110 and
-     settles at 0.1135-0.1136 over t = 5-6 s, Archimedes for the seeded lattice 0.1137
-     (-0.1 %); the nearest water point stays 0.90 spacing from the block's particles; the
+     bodies' particle surfaces meet at a node (kernels/mpm/contact.py). Until 2026-11-26 it
+     acted where the fields' nodal centres of mass came within a multiple of their touching
+     separation: at 1 (Nairn's check) only once the lattices overlapped, and the water row
+     below the block closed in on the block's bottom row (to 0.04 spacing by t = 4.8 s)
+     while the block crept past Archimedes (0.1142 at t = 4.8 s, still sinking); the case
+     took 1.5, found by trial.
+     Measured (spacing 0.01, the centre-of-mass check at 1.5): the block sinks from a draft
+     of 0.110 and settles at 0.1135-0.1136 over t = 5-6 s, Archimedes for the seeded lattice
+     0.1137 (-0.1 %; with the surface check 0.1140-0.1141, +0.3 %); the nearest water point
+     stays 0.90 spacing from the block's particles; the
      contact carries about 20 % of the block's weight (the rest is the pressure pairs); the
      total energy rises by 0.2 J (0.25 %) in the first 0.5 s, the contact's work, and falls
      below its start by t = 4 s (83.37 -> 83.15 J at t = 6). With (2) alone (no
      pressure pairs) the block sinks at 3 mm/s, past Archimedes by t = 1 s, with 24 water
-     points inside its lattice by t = 1.8 s (contact_gap 1). (Started at rho0, without (3),
-     it runs to the end with or without (2): drafts 0.108 and 0.107 at t = 1.8 s, -5 %.)
+     points inside its lattice by t = 1.8 s (the centre-of-mass check at 1). (Started at
+     rho0, without (3), it runs to the end with or without (2): drafts 0.108 and 0.107 at
+     t = 1.8 s, -5 %.)
   3. Initial state. With `[sph] hydrostatic = true` the MPM fluid bodies start hydrostatic
      as the SPH ones (physics/hydrostatic.py): J = rho0/rho(z), volume, density and pressure
      (the water of scene 7, kappa = 2e3, is 11 % denser at its floor than at its surface:
@@ -55,11 +58,11 @@ The rule, automatic in a coupled scene; (2) needs one velocity field per body
 Still open: the approach to equilibrium is slow. PIC (`mpm.flip = 0`, the case's) slows
 every flow of the water by its dissipation (the ice's wave speed and the SPH h set a step
 about 10 times below the one the water alone would take on this grid): the block needs
-about 5 s to settle, and released on the surface (the thesis' start; contact_gap 1) it sinks
-at 1 cm/s, to a draft of only 0.05 by t = 1.8 s. With FLIP (contact_gap 1) the block drops
+about 5 s to settle, and released on the surface (the thesis' start; the check at 1) it sinks
+at 1 cm/s, to a draft of only 0.05 by t = 1.8 s. With FLIP (the check at 1) the block drops
 and bobs at the right pace but overshoots: flip = 0.9 reaches Archimedes' draft at t = 0.8 s
 and goes on sinking (0.1152 at t = 1.8 s), flip = 0.99 0.1193 (+5 %), flip = 1 rings
-(kinetic energy 0.6 J at t = 1.8 s); with contact_gap 1.5, flip = 0.9 passes Archimedes at
+(kinetic energy 0.6 J at t = 1.8 s); with the check at 1.5, flip = 0.9 passes Archimedes at
 t = 2.7 s and sinks on (0.1143 at t = 3), flip = 0.99 reaches it at t = 1.8 s and bobs about
 it (0.1132-0.1138 over t = 1.8-3 s) while the water closes in to 0.49 spacing.
 """
