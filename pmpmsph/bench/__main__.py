@@ -70,6 +70,7 @@ def main(argv: "list[str] | None" = None) -> None:
                     help="of the MPM bodies (pic: the FLIP blend at 0)")
     fl.add_argument("--cell-spacings", type=int, default=4,
                     help="grid cell size in particle spacings (2: 4 points a cell in 2D)")
+    fl.add_argument("--shape", default="gimp", help="the MPM bodies' shape function")
     fl.add_argument("--out", default="bench_results")
     pl = sub.add_parser("plate", help="water on an elastic clamped plate, mid-span deflection "
                         "against the clamped beam (plate_fsi.py)")

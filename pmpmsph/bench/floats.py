@@ -180,7 +180,7 @@ def run(args):
                 r = float_run(combo, width=w, height=h, ratio=s, drop=drop,
                               spacing=args.spacing, end=args.end,
                               velocity_update=args.velocity_update,
-                              cell_spacings=args.cell_spacings)
+                              cell_spacings=args.cell_spacings, shape=args.shape)
             except Exception as exc:  # a failed run is a row of the table, not the end
                 r = dict(combo=combo, fraction=float("nan"), reference=float("nan"),
                          error=float("nan"), settle=float("nan"), failure=str(exc))
