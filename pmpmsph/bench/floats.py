@@ -38,11 +38,12 @@ BLOCKS = ((0.10, 0.06, 0.80, 0.010), (0.08, 0.04, 0.50, 0.020), (0.14, 0.04, 0.9
 
 def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, depth=0.2,
                 spacing=0.005, end=3.0, cell_spacings=4, velocity_update="apic",
-                contact="multi", shape="gimp"):
+                contact="multi", shape="gimp", transfer="musl"):
     """The scene of one float (module doc); grid cells of `cell_spacings` spacings; the MPM
     bodies' `velocity_update` ("apic", or "pic": the FLIP blend at 0); with MPM water, the
     `contact` "multi" (one velocity field per body, frictionless contact) or "single" (one
-    velocity field for water and block); the MPM bodies' `shape` function."""
+    velocity field for water and block); the MPM bodies' `shape` function and `transfer`
+    scheme."""
     block_method, water_method = combo.split("_in_")
     sp = spacing
     cell = tank / round(tank / (cell_spacings * sp))  # nodes on the tank's faces
@@ -56,7 +57,7 @@ def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, d
                     time=dict(end=end, cfl=0.2), gravity=[0.0, -G],
                     parallel=dict(balance_every=0))
     if "mpm" in combo:
-        mpm = dict(shape=shape, transfer="musl")
+        mpm = dict(shape=shape, transfer=transfer)
         if velocity_update == "pic":
             mpm["flip"] = 0.0
         else:
