@@ -6,7 +6,8 @@ so that the clamped beam's w = q L^4 / (384 D) is 1 % of the span (4.000 mm).
 Measured (`python -m pmpmsph.bench plate --combos mpm_plate`, mean over the last 0.1 s of
 0.5 s): 3.375 mm at spacing 0.01 (two particles through the thickness, -15.6 %), 3.96 mm at
 0.005 (-0.9 %), 3.99 mm at 0.0025 (-0.2 %). The same plate under MPM water (its own velocity
-field, frictionless contact): 3.95 mm at 0.005 (-1.3 %). The linear Euler-Bernoulli formula
+field, frictionless contact deciding from the particle surfaces): 3.93 mm at 0.005 (-1.6 %;
+-1.3 % with the earlier centre-of-mass gap check at 1.5). The linear Euler-Bernoulli formula
 leaves out Timoshenko's shear deflection (+3.4 % here) and the membrane tension of a plate whose
 clamped ends cannot move (about -3 % at w / t = 0.2); they nearly cancel, so the continuum
 plate sits close to the formula, and the runs converge to it. Here at CI size: spacing
@@ -30,7 +31,7 @@ def test_the_chosen_modulus_gives_one_percent_of_the_span():
     assert ratio == pytest.approx(8 * t**2 / (0.7 * (5 / 6) * span**2), rel=1e-12)
 
 
-@pytest.mark.parametrize("combo, expected", [("mpm_plate", -0.012), ("mpm_mpm", -0.013)])
+@pytest.mark.parametrize("combo, expected", [("mpm_plate", -0.012), ("mpm_mpm", -0.016)])
 def test_mpm_plate_settles_at_the_clamped_beam_deflection(combo, expected):
     """Under SPH water ("mpm_plate") and under MPM water in contact ("mpm_mpm")."""
     t, w, ref = plate_run(combo, spacing=0.005, end=0.3, dist=Distributor(MPI.COMM_SELF))
