@@ -11,7 +11,7 @@ A shape function here is a tensor product of 1-D weights: `weights(X, lp)` gives
 (base, w, dw) at X (cell units) for the nodes base .. base + width - 1, as 4-tuples.
 Traits:
   width           nodes per axis of one stencil (at most 4)
-  support         half-width of the 1-D weight's support, cells (the contact gap's scale)
+  support         half-width of the 1-D weight's support, cells
   apic_d_inverse  D_p^-1 dx^2 of APIC's inertia-like tensor when it is a constant multiple
                   of I (Jiang et al. 2015, section 5.1: 4 quadratic, 3 cubic B-spline); 0
                   when D_p is summed per particle (the linear hat takes C_p = grad v)
@@ -19,9 +19,6 @@ Traits:
                   particle (field `lp`) can take; 0: it carries none
   corners         the stencil is averaged over the 2^dim corners of a convected particle
                   domain (CPDI: `kernels.mpm.shapes.corner_stencil`)
-  gap_weights     the 1-D weights (X, lp) from which multi-field contact estimates the gap
-                  at which two bodies' particles first share a node (`physics.mpm.stage`), with
-                  lp = 1/4; default `weights`
 
 `shape_functions()` imports every module of this package that is not this one, so a new shape
 is one new file (and its test). Plain Python: importing it does not import numba.
@@ -41,11 +38,6 @@ class ShapeFunction:
     apic_d_inverse: float = 0.0
     half_width: float = 0.0
     corners: bool = False
-    gap_weights: object = None
-
-    @property
-    def contact_weights(self):
-        return self.weights if self.gap_weights is None else self.gap_weights
 
 
 _SHAPES = Registry("shape function", __package__, __file__)
