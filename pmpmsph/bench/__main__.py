@@ -68,9 +68,11 @@ def main(argv: "list[str] | None" = None) -> None:
     fl.add_argument("--end", type=float, default=3.0)
     fl.add_argument("--velocity-update", default="apic", choices=["apic", "pic", "flip"],
                     help="of the MPM bodies (pic: the FLIP blend at 0)")
-    fl.add_argument("--cell-spacings", type=int, default=4,
-                    help="grid cell size in particle spacings (2: 4 points a cell in 2D)")
-    fl.add_argument("--shape", default="gimp", help="the MPM bodies' shape function")
+    fl.add_argument("--cell-spacings", type=int, default=None,
+                    help="grid cell size in particle spacings (default: 2 in MPM water, "
+                    "4 in SPH water)")
+    fl.add_argument("--shape", default=None, help="the MPM bodies' shape function (default: "
+                    "quadratic in MPM water, gimp in SPH water)")
     fl.add_argument("--out", default="bench_results")
     pl = sub.add_parser("plate", help="water on an elastic clamped plate, mid-span deflection "
                         "against the clamped beam (plate_fsi.py)")

@@ -5,7 +5,8 @@ A rectangular block (neo-Hookean, E = 2e5, nu = 0.3, density `ratio` x 997) of `
 gamma = 7, mu = 0.98) `depth` deep in a tank `tank` wide, started hydrostatic. Combinations
 (block in water): "mpm_in_sph" (SPH water in a tank of dummy walls; the coupling's fluid-solid
 pairs), "sph_in_mpm" (an SPH solid in MPM water; physics/sph/solid_in_fluid.py), "mpm_in_mpm" (both
-MPM, one velocity field per body, Bardenhagen contact), "sph_in_sph" (both SPH).
+MPM, one velocity field per body, frictionless contact where the particle surfaces meet),
+"sph_in_sph" (both SPH).
 
 Reference: Archimedes' principle in the Tait water at rest: the draft d of the rectangle of
 the block's seeded mass m per unit thickness, width * int_0^d rho(z) dz = m with rho(z) the
@@ -37,15 +38,21 @@ BLOCKS = ((0.10, 0.06, 0.80, 0.010), (0.08, 0.04, 0.50, 0.020), (0.14, 0.04, 0.9
 
 
 def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, depth=0.2,
-                spacing=0.005, end=3.0, cell_spacings=4, velocity_update="apic",
-                contact="multi", shape="gimp", transfer="musl"):
-    """The scene of one float (module doc); grid cells of `cell_spacings` spacings; the MPM
+                spacing=0.005, end=3.0, cell_spacings=None, velocity_update="apic",
+                contact="multi", shape=None, transfer="musl"):
+    """The scene of one float (module doc); grid cells of `cell_spacings` spacings and the MPM
+    bodies' `shape` function, by default (None) those that do best in each water: in MPM
+    water quadratic B-splines on cells of 2 spacings (docs/floats.md), in SPH water GIMP on
+    cells of 4 (the grid carries the block alone); the MPM
     bodies' `velocity_update` ("apic", or "pic": the FLIP blend at 0); with MPM water, the
     `contact` "multi" (one velocity field per body, frictionless contact) or "single" (one
-    velocity field for water and block); the MPM bodies' `shape` function and `transfer`
-    scheme."""
+    velocity field for water and block); the MPM bodies' `transfer` scheme."""
     block_method, water_method = combo.split("_in_")
     sp = spacing
+    if cell_spacings is None:
+        cell_spacings = 2 if water_method == "mpm" else 4
+    if shape is None:
+        shape = "quadratic" if water_method == "mpm" else "gimp"
     cell = tank / round(tank / (cell_spacings * sp))  # nodes on the tank's faces
     walls = 4 * sp if water_method == "sph" else 0.0
     pad = int(math.ceil(walls / cell)) + 1
