@@ -3,6 +3,7 @@ slice write that output and checkpoints share (io/snapshots.py, io/checkpoint.py
 import glob
 import os
 import re
+from collections import namedtuple
 from importlib.metadata import version
 
 import h5py
@@ -89,3 +90,25 @@ def write_slice(dset, offset, arr, collective):
         dxpl = h5py.h5p.create(h5py.h5p.DATASET_XFER)
         dxpl.set_dxpl_mpio(h5py.h5fd.MPIO_COLLECTIVE)
     dset.id.write(mspace, fspace, buf, dxpl=dxpl)
+
+
+#: one snapshot of a run file (`complete_snapshots`, `snapshot_read.list_snapshots`)
+SnapshotInfo = namedtuple("SnapshotInfo", "index name step time n_total")
+
+
+def complete_snapshots(grp):
+    """SnapshotInfo of every complete snapshot in the open snapshot group `grp`, in order.
+    The last group may be one that a killed run left half-written (no attributes yet, or an
+    object header the kill cut short): it is no snapshot and is left out. An unreadable
+    group before the last is an error (raised as is)."""
+    names = sorted(grp.keys())
+    out = []
+    for k, name in enumerate(names):
+        try:
+            a = grp[name].attrs
+            out.append(SnapshotInfo(int(name), name, int(a["step"]), float(a["time"]),
+                                    int(a["n_total"])))
+        except (KeyError, OSError):
+            if k < len(names) - 1:
+                raise
+    return out

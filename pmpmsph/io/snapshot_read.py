@@ -1,14 +1,11 @@
 """Reading particle snapshots back (serial, any layout of io/snapshots.py: plain, collective
 MPI-IO or per-rank files joined by virtual datasets, which HDF5 resolves)."""
 import os
-from collections import namedtuple
-
 import numpy as np
 
-from .h5files import GROUP, open_h5
+from .h5files import GROUP, complete_snapshots, open_h5
 from .snapshots import SYM_ATTR, SYM_ORDER
 
-SnapshotInfo = namedtuple("SnapshotInfo", "index name step time n_total")
 
 
 def unpack_symmetric(arr):
@@ -22,17 +19,13 @@ def unpack_symmetric(arr):
 
 
 def list_snapshots(path):
-    """The snapshots of a run file, in order, as SnapshotInfo(index, name, step, time, n_total)."""
-    out = []
+    """The snapshots of a run file, in order, as SnapshotInfo(index, name, step, time, n_total)
+    (a last snapshot a killed run left half-written is not among them)."""
     with open_h5(os.fspath(path), "r") as f:
         grp = f.get(GROUP)
         if grp is None:
             raise ValueError(f"{path} is not a pmpmsph snapshot file (no /{GROUP} group)")
-        for name in sorted(grp.keys()):
-            a = grp[name].attrs
-            out.append(SnapshotInfo(int(name), name, int(a["step"]), float(a["time"]),
-                                    int(a["n_total"])))
-    return out
+        return complete_snapshots(grp)
 
 
 def read_snapshot(path, index=-1, fields=None, packed=False):

@@ -57,7 +57,8 @@ import os
 import h5py
 import numpy as np
 
-from .h5files import (GROUP, LIBVER, TOPOLOGY, code_version, connectivity_dtype, open_h5,
+from .h5files import (GROUP, LIBVER, TOPOLOGY, code_version, complete_snapshots,
+                      connectivity_dtype, open_h5,
                       rank_file, rank_files_present, snapshot_name, write_slice,
                       xdmf_path_for)
 from .xdmf import write_xdmf
@@ -188,13 +189,14 @@ class SnapshotWriter:
             if f.attrs.get("format") != FORMAT or GROUP not in f:
                 raise ValueError(f"cannot append to {self.path}: not a pmpmsph snapshot file")
             grp = f[GROUP]
-            names = sorted(grp.keys())
-            if after_step is not None:
-                for name in [n for n in names if int(grp[n].attrs["step"]) > after_step]:
-                    del grp[name]
-                names = sorted(grp.keys())
-            self.index = int(names[-1]) + 1 if names else 0
-            self.last_step = int(grp[names[-1]].attrs["step"]) if names else None
+            done = complete_snapshots(grp)
+            # a half-written last group of a killed run goes, and those after `after_step`
+            keep = {i.name for i in done if after_step is None or i.step <= after_step}
+            for name in [n for n in grp.keys() if n not in keep]:
+                del grp[name]
+            done = [i for i in done if i.name in keep]
+            self.index = done[-1].index + 1 if done else 0
+            self.last_step = done[-1].step if done else None
             layout = f.attrs.get("layout")
             layout = layout.decode() if isinstance(layout, bytes) else layout
             if layout != self.mode:

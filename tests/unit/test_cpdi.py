@@ -22,7 +22,7 @@ def one_particle_p2g(dim, F, lp_cells, sigma, x_p, dx=0.1, nodes=16):
     m, vol = 2.5, 0.3
     p2g(*static_tags(dim, CPDI), x_p[None, :], np.zeros((1, dim)), np.array([m]),
         np.array([vol]), sigma[None], None, np.array([lp_cells]), F[None], None, node0,
-        np.zeros(dim, np.int64), 1.0 / dx, strides, gmass, gmom, gforce, None, None, None)
+        np.zeros(dim, np.int64), 1.0 / dx, strides, gmass, gmom, gforce, None, None)
     xs = np.stack(np.meshgrid(*[np.arange(nodes) * dx] * dim, indexing="ij"), -1).reshape(-1, dim)
     return m, vol, gmass[0], gforce[0], xs
 

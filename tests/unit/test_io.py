@@ -9,7 +9,7 @@ import pytest
 from pmpmsph import ConfigError, load_case_text
 from pmpmsph.io import (DiagnosticsCSV, SnapshotWriter, list_snapshots, read_attrs,
                         read_diagnostics, read_snapshot, rebuild_xdmf_main, write_xdmf)
-from pmpmsph.io.h5files import rank_file
+from pmpmsph.io.h5files import GROUP, rank_file, snapshot_name
 from pmpmsph.parallel.distributor import Distributor
 
 TIMES = [0.0, 0.125, 1.0 / 3.0]
@@ -85,6 +85,22 @@ def test_roundtrip_fields_and_attrs(dist, tmp_path):
         assert g.attrs["time"] == TIMES[1] and g.attrs["step"] == STEPS[1]
         np.testing.assert_array_equal(g.attrs["counts"], [COUNTS[1]])
         assert g["sigma"].shape == (COUNTS[1], 3, 3)
+
+
+def test_a_half_written_last_snapshot_is_left_out_and_dropped_on_append(dist, tmp_path):
+    """A run killed while it wrote a snapshot can leave its group without attributes (or with
+    an object header cut short): the complete snapshots stay readable, and a restart
+    appending to the file removes the leftover."""
+    path = write_run(dist, str(tmp_path / "run.h5"))
+    with h5py.File(path, "r+") as f:
+        f[GROUP].create_group(snapshot_name(3))  # created, nothing written yet
+    assert [i.step for i in list_snapshots(path)] == STEPS
+    assert read_snapshot(path, -1)[1] == STEPS[-1]
+    with SnapshotWriter(dist, path, append=True, after_step=7) as w:
+        assert w.write(8, 0.5, make_fields(2)) == 2
+    assert [i.step for i in list_snapshots(path)] == [0, 7, 8]
+    with h5py.File(path, "r") as f:
+        assert sorted(f[GROUP].keys()) == [snapshot_name(i) for i in range(3)]
 
 
 def test_large_case_text_and_readable_between_writes(dist, tmp_path):

@@ -55,7 +55,7 @@ def test_p2g_of_an_affine_field_is_exact(dim, shape, mls):
     gmom = np.zeros((1, nn, dim))
     p2g_affine(*static_tags(dim, SHAPES[shape]), mls, x, v, C, rng.uniform(1, 2, n),
                rng.uniform(0.5, 1, n), np.zeros((n, 3, 3)), None, lp, None, None, origin,
-               offset, 1.0 / DX, strides, gmass, gmom, None, None, None, None)
+               offset, 1.0 / DX, strides, gmass, gmom, None, None, None)
     hit = gmass[0] > 1e-12 * gmass.max()
     vel = gmom[0][hit] / gmass[0][hit, None]
     exact = _node_positions(dim)[hit] @ A.T + b
@@ -65,8 +65,7 @@ def test_p2g_of_an_affine_field_is_exact(dim, shape, mls):
     gmom[:] = 0.0
     p2g_affine(*static_tags(dim, SHAPES[shape]), mls, x, v, np.zeros_like(C),
                rng.uniform(1, 2, n), rng.uniform(0.5, 1, n), np.zeros((n, 3, 3)), None, lp,
-               None, None, origin, offset, 1.0 / DX, strides, gmass, gmom, None, None, None,
-               None)
+               None, None, origin, offset, 1.0 / DX, strides, gmass, gmom, None, None, None)
     assert np.abs(gmom[0][hit] / gmass[0][hit, None] - exact).max() > 1e-3
 
 

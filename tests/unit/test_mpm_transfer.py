@@ -59,7 +59,7 @@ def test_p2g_equals_the_node_by_node_sums(dim, shape, fold):
     dt = 0.37
     lp = np.full((len(x), dim), LP) if kind == GIMP else None
     p2g(*static_tags(dim, kind), x, v, m, vol, S, fe, lp, None, None, origin, offset,
-        1.0 / DX, strides, gmass, gmom, None if fold else gforce, None, None,
+        1.0 / DX, strides, gmass, gmom, None if fold else gforce, None,
         dt if fold else None)
     ref_m, ref_p, ref_f = np.zeros(nn), np.zeros((nn, dim)), np.zeros((nn, dim))
     for p in range(len(x)):
