@@ -135,9 +135,10 @@ class GridHalo:
         self._exchange(arrays, "broadcast", TAG_BCAST, combine=None)
 
     def maximum(self, arrays):
-        """The largest value over all ranks on owned and ghost nodes alike (as `sum` sums)."""
+        """The largest value over all ranks on owned and ghost nodes alike (as `sum` sums),
+        NaN counting as missing (np.fmax)."""
         if not self.pairwise:
-            self._exchange(arrays, "reduce", TAG_REDUCE, combine=np.maximum)
+            self._exchange(arrays, "reduce", TAG_REDUCE, combine=np.fmax)
             self.broadcast(arrays)
             return
-        self._exchange(arrays, "sum", TAG_SUM, combine=np.maximum)
+        self._exchange(arrays, "sum", TAG_SUM, combine=np.fmax)

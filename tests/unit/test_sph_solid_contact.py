@@ -45,9 +45,8 @@ def test_gathered_contact_momentum_balances_the_fluid_field():
     grid_velocity(2, grid.mass, grid.mom, grid.force, grid.vel, grid.dv, 1e-4, np.zeros(3),
                   0.0, 1e-12, WITH_FORCE, 0, grid.n_nodes)
 
-    contact_normals(2, grid.mass, grid.mgrad, np.array([True, False]), 1e-12,
-                    grid.normals)
-    grid.reach.fill(-np.inf)
+    contact_normals(2, grid.mass, grid.mgrad, np.array([True, False]), 1e-12, grid.normals,
+                    grid.reach)
     surface_reach(2, x, np.full(n, 0.025**2), field, grid.node0, grid.offset, grid.inv_dx,
                   grid.strides, 1.75, grid.normals, grid.reach)
     before = grid.vel.copy()

@@ -31,10 +31,19 @@ def test_normals_are_unit_and_opposite_where_two_fields_meet():
     grad[1, k] = (0.0, 5.0)
     mass[0, _node(1, 1)] = 1.0  # one field only: no normal
     normals = np.ones((2, nn, 2))
-    contact_normals(2, mass, grad, np.zeros(2, np.bool_), 1e-12, normals)
+    reach = np.zeros((2, nn))
+    contact_normals(2, mass, grad, np.zeros(2, np.bool_), 1e-12, normals, reach)
     assert normals[0, k] == pytest.approx([0.0, -1.0])
     assert normals[1, k] == pytest.approx([0.0, 1.0])
     assert np.all(normals[:, _node(1, 1)] == 0.0)
+    # the reaches start at -inf where the fields meet, NaN (no contact node) elsewhere
+    assert np.all(np.isneginf(reach[:, k]))
+    assert np.isnan(reach).sum() == reach.size - 2
+    # where a fluid (field 0) meets a solid, both take the solid's normal
+    grad[1, k] = (0.6, 0.8)
+    contact_normals(2, mass, grad, np.array([True, False]), 1e-12, normals, reach)
+    assert normals[1, k] == pytest.approx([0.6, 0.8])
+    assert normals[0, k] == pytest.approx([-0.6, -0.8])
 
 
 def test_reach_is_the_furthest_particle_surface_along_the_normal():

@@ -26,10 +26,11 @@ from ...jit import njit
 
 
 @njit
-def contact_normals(dim, gmass, gmgrad, fluid, mass_cutoff, normals):
+def contact_normals(dim, gmass, gmgrad, fluid, mass_cutoff, normals, reach):
     """normals[f, i] = the outward unit normal of field f at every node i where two or more
-    fields have mass (zero elsewhere), as `multi_field_contact` takes them. Where exactly two
-    meet: n_f = -n_o along grad m_f - grad m_o, or along the solid's own mass gradient alone
+    fields have mass (zero elsewhere), as `multi_field_contact` takes them, and reach[f, i]
+    set to -inf there (the start of `surface_reach`'s maxima), NaN at the other nodes. Where
+    exactly two meet: n_f = -n_o along grad m_f - grad m_o, or along the solid's own mass gradient alone
     where a fluid field (`fluid[f]`) meets a solid one (the fluid's surface is wherever the
     solid pushes it; averaged with the fluid's, a node beside a block's side near its bottom
     corner took a normal tilted towards the water below and held the block up)."""
@@ -41,6 +42,7 @@ def contact_normals(dim, gmass, gmgrad, fluid, mass_cutoff, normals):
         for f in range(nf):
             for a in range(dim):
                 normals[f, i, a] = 0.0
+            reach[f, i] = np.nan
             if gmass[f, i] > mass_cutoff:
                 count += 1
                 if first < 0:
@@ -52,6 +54,7 @@ def contact_normals(dim, gmass, gmgrad, fluid, mass_cutoff, normals):
         for f in range(nf):
             if gmass[f, i] <= mass_cutoff:
                 continue
+            reach[f, i] = -np.inf
             norm2 = 0.0
             wf = 1.0
             wo = 1.0
@@ -78,8 +81,8 @@ def surface_reach(dim, x, vol, pfield, origin, offset, inv_dx, strides, support,
     (per axis) and within half a cell of the line through it along n_f(i) of
     (x_p - x_i).n_f(i) + r_p: how far body f reaches along its outward normal at node i,
     from the node, with r_p = l_p sum_a |n_a| the extent of p's square (cube) of half-side
-    l_p = vol_p^(1/dim) / 2 along n. Only nodes with a normal (`contact_normals`) are
-    touched; the others keep what they hold (the caller's -inf)."""
+    l_p = vol_p^(1/dim) / 2 along n. Only the nodes `contact_normals` marked (reach not
+    NaN) are touched."""
     nf = normals.shape[0]
     st = np.zeros(3, np.int64)
     st[:dim] = strides
@@ -106,7 +109,7 @@ def surface_reach(dim, x, vol, pfield, origin, offset, inv_dx, strides, support,
             for i1 in range(lo[1], hi[1]):
                 for i2 in range(lo[2], hi[2]):
                     node = i0 * st[0] + i1 * st[1] + i2 * st[2]
-                    if f >= nf:
+                    if f >= nf or np.isnan(reach[f, node]):  # (not a contact node)
                         continue
                     d = 0.0
                     r = 0.0
