@@ -31,9 +31,10 @@ def contact_normals(dim, gmass, gmgrad, fluid, mass_cutoff, normals, reach):
     fields have mass (zero elsewhere), as `multi_field_contact` takes them, and reach[f, i]
     set to -inf there (the start of `surface_reach`'s maxima), NaN at the other nodes. Where
     exactly two meet: n_f = -n_o along grad m_f - grad m_o, or along the solid's own mass
-    gradient alone where a fluid field (`fluid[f]`) meets a solid one (the fluid's surface is wherever the
-    solid pushes it; averaged with the fluid's, a node beside a block's side near its bottom
-    corner took a normal tilted towards the water below and held the block up)."""
+    gradient alone where a fluid field (`fluid[f]`) meets a solid one (the fluid's surface
+    is wherever the solid pushes it; averaged with the fluid's, a node beside a block's side
+    near its bottom corner took a normal tilted towards the water below and held the block
+    up)."""
     nf, nn = gmass.shape
     for i in range(nn):
         count = 0
