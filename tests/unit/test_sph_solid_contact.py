@@ -47,8 +47,8 @@ def test_gathered_contact_momentum_balances_the_fluid_field():
 
     contact_normals(2, grid.mass, grid.mgrad, np.array([True, False]), 1e-12, grid.normals,
                     grid.reach)
-    surface_reach(2, x, np.full(n, 0.025**2), field, grid.node0, grid.offset, grid.inv_dx,
-                  grid.strides, 1.75, grid.normals, grid.reach)
+    surface_reach(2, x, np.full(n, 0.025**2), field, lp, grid.node0, grid.offset, grid.inv_dx,
+                  grid.strides, 1.25, grid.normals, grid.reach)
     before = grid.vel.copy()
     multi_field_contact(2, grid.mass, grid.normals, grid.reach, grid.vel, grid.dv, 0.0, 1e-12,
                         1e-4)

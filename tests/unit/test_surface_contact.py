@@ -16,8 +16,8 @@ def _node(i, j):
 
 def _reach(x, vol, field, normals, support=1.5):
     reach = np.full((2, SHAPE[0] * SHAPE[1]), -np.inf)
-    surface_reach(2, x, vol, field, np.zeros(2), np.zeros(2, np.int64), 1.0 / DX, STRIDES,
-                  support, normals, reach)
+    surface_reach(2, x, vol, field, None, np.zeros(2), np.zeros(2, np.int64), 1.0 / DX,
+                  STRIDES, support, normals, reach)
     return reach
 
 

@@ -76,12 +76,12 @@ def contact_normals(dim, gmass, gmgrad, fluid, mass_cutoff, normals, reach):
 
 
 @njit
-def surface_reach(dim, x, vol, pfield, origin, offset, inv_dx, strides, support, normals,
+def surface_reach(dim, x, vol, pfield, lp, origin, offset, inv_dx, strides, support, normals,
                   reach):
     """reach[f, i] = max over the particles p of field f within `support` cells of node i
-    (per axis) and within half a cell of the line through it along n_f(i) of
-    (x_p - x_i).n_f(i) + r_p: how far body f reaches along its outward normal at node i,
-    from the node, with r_p = l_p sum_a |n_a| the extent of p's square (cube) of half-side
+    per axis (1 + lp_p,a with GIMP's half-widths `lp`; None: `support`) and within half a
+    cell of the line through it along n_f(i) of (x_p - x_i).n_f(i) + r_p: how far body f
+    reaches along its outward normal at node i, from the node, with r_p = l_p sum_a |n_a| the extent of p's square (cube) of half-side
     l_p = vol_p^(1/dim) / 2 along n. Only the nodes `contact_normals` marked (reach not
     NaN) are touched."""
     nf = normals.shape[0]
@@ -104,8 +104,9 @@ def surface_reach(dim, x, vol, pfield, origin, offset, inv_dx, strides, support,
             hi[a] = 1
         for a in range(dim):
             xi[a] = (x[p, a] - origin[a]) * inv_dx
-            lo[a] = max(int(np.ceil(xi[a] - support)) - off[a], 0)
-            hi[a] = min(int(np.floor(xi[a] + support)) - off[a] + 1, nax[a])
+            s = support if lp is None else 1.0 + lp[p, a]
+            lo[a] = max(int(np.ceil(xi[a] - s)) - off[a], 0)
+            hi[a] = min(int(np.floor(xi[a] + s)) - off[a] + 1, nax[a])
         for i0 in range(lo[0], hi[0]):
             for i1 in range(lo[1], hi[1]):
                 for i2 in range(lo[2], hi[2]):

@@ -278,24 +278,20 @@ class MPMStage:
         contact_normals(self.dim, g.mass, g.mgrad, self._fluid_field, self.mass_cutoff,
                         g.normals, g.reach)
         n = self.n_p2g
-        surface_reach(self.dim, p["x"][:n], p["vol"][:n], p["body"][:n], g.node0, g.offset,
-                      g.inv_dx, g.strides, self._reach_support(n), g.normals, g.reach)
+        # how far a particle reaches nodes (cells per axis): GIMP 1 + its half-width, CPDI's
+        # deformed domain the bound the grid keeps for it, the other shapes their support
+        gimp = self.shape.half_width > 0.0 and not self.shape.corners
+        support = (float(self.case.mpm.cpdi_reach) + 1.0 if self.shape.corners
+                   else self.shape.support)
+        surface_reach(self.dim, p["x"][:n], p["vol"][:n], p["body"][:n],
+                      p["lp"][:n] if gimp else None, g.node0, g.offset, g.inv_dx, g.strides,
+                      support, g.normals, g.reach)
         if self.halo_enabled:  # (inside the "grid" phase)
             self.halo.maximum([g.reach])
         if g.folded:
             g.fold_periodic([g.reach], np.fmax)
         multi_field_contact(self.dim, g.mass, g.normals, g.reach, g.vel, g.dv, self.friction,
                             self.mass_cutoff, dt)
-
-    def _reach_support(self, n):
-        """How far (cells, per axis) the rows [0, n) reach nodes: the shape's support, 1 + the
-        largest half-width for GIMP, and for CPDI's deformed domains its bound on them."""
-        shape = self.shape
-        if shape.corners:
-            return float(self.case.mpm.cpdi_reach) + 1.0
-        if shape.half_width > 0.0 and n:
-            return 1.0 + float(self.p["lp"][:n].max())
-        return shape.support
 
     def _gradients(self, n):
         """A reused (n, 3, 3) array for the velocity gradients of an affine G2P."""
