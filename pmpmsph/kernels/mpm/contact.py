@@ -81,9 +81,9 @@ def surface_reach(dim, x, vol, pfield, lp, origin, offset, inv_dx, strides, supp
     """reach[f, i] = max over the particles p of field f within `support` cells of node i
     per axis (1 + lp_p,a with GIMP's half-widths `lp`; None: `support`) and within half a
     cell of the line through it along n_f(i) of (x_p - x_i).n_f(i) + r_p: how far body f
-    reaches along its outward normal at node i, from the node, with r_p = l_p sum_a |n_a| the extent of p's square (cube) of half-side
-    l_p = vol_p^(1/dim) / 2 along n. Only the nodes `contact_normals` marked (reach not
-    NaN) are touched."""
+    reaches along its outward normal at node i, from the node, with r_p = l_p sum_a |n_a|
+    the extent of p's square (cube) of half-side l_p = vol_p^(1/dim) / 2 along n. Only the
+    nodes `contact_normals` marked (reach not NaN) are touched."""
     nf = normals.shape[0]
     st = np.zeros(3, np.int64)
     st[:dim] = strides
