@@ -1,11 +1,11 @@
 """Reading particle snapshots back (serial, any layout of io/snapshots.py: plain, collective
 MPI-IO or per-rank files joined by virtual datasets, which HDF5 resolves)."""
 import os
+
 import numpy as np
 
 from .h5files import GROUP, complete_snapshots, open_h5
 from .snapshots import SYM_ATTR, SYM_ORDER
-
 
 
 def unpack_symmetric(arr):

@@ -23,6 +23,26 @@ where the centre-of-mass check left them -5 to -18 % high; no gap parameter.
 import numpy as np
 
 from ...jit import njit
+from .shapes import local_layout
+
+
+@njit(inline="always")
+def _fields_at(gmass, i, mass_cutoff):
+    """(count, first, second, their total mass) of the fields with mass at node i (first and
+    second: the lowest two such fields, -1 if none)."""
+    count = 0
+    first = -1
+    second = -1
+    mtot = 0.0
+    for f in range(gmass.shape[0]):
+        if gmass[f, i] > mass_cutoff:
+            count += 1
+            mtot += gmass[f, i]
+            if first < 0:
+                first = f
+            elif second < 0:
+                second = f
+    return count, first, second, mtot
 
 
 @njit
@@ -37,19 +57,11 @@ def contact_normals(dim, gmass, gmgrad, fluid, mass_cutoff, normals, reach):
     up)."""
     nf, nn = gmass.shape
     for i in range(nn):
-        count = 0
-        first = -1
-        second = -1
         for f in range(nf):
             for a in range(dim):
                 normals[f, i, a] = 0.0
             reach[f, i] = np.nan
-            if gmass[f, i] > mass_cutoff:
-                count += 1
-                if first < 0:
-                    first = f
-                elif second < 0:
-                    second = f
+        count, first, second, _ = _fields_at(gmass, i, mass_cutoff)
         if count < 2:
             continue
         for f in range(nf):
@@ -84,15 +96,7 @@ def surface_reach(dim, x, vol, pfield, lp, origin, offset, inv_dx, strides, supp
     reaches along its outward normal at node i, from the node, with r_p = l_p sum_a |n_a|
     the extent of p's square (cube) of half-side l_p = vol_p^(1/dim) / 2 along n. Only the
     nodes `contact_normals` marked (reach not NaN) are touched."""
-    nf = normals.shape[0]
-    st = np.zeros(3, np.int64)
-    st[:dim] = strides
-    off = np.zeros(3, np.int64)
-    off[:dim] = offset
-    nax = np.ones(3, np.int64)
-    nn = normals.shape[1]
-    for a in range(dim):
-        nax[a] = (nn // st[a]) if a == 0 else (st[a - 1] // st[a])
+    st, off, nax = local_layout(dim, strides, offset, normals.shape[1])
     lo = np.zeros(3, np.int64)
     hi = np.zeros(3, np.int64)
     xi = np.zeros(3)
@@ -111,7 +115,7 @@ def surface_reach(dim, x, vol, pfield, lp, origin, offset, inv_dx, strides, supp
             for i1 in range(lo[1], hi[1]):
                 for i2 in range(lo[2], hi[2]):
                     node = i0 * st[0] + i1 * st[1] + i2 * st[2]
-                    if f >= nf or np.isnan(reach[f, node]):  # (not a contact node)
+                    if np.isnan(reach[f, node]):  # (not a contact node)
                         continue
                     d = 0.0
                     r = 0.0
@@ -146,18 +150,7 @@ def multi_field_contact(dim, gmass, normals, reach, gvel, gdv, mu, mass_cutoff, 
     nf, nn = gmass.shape
     vcm = np.zeros(3)
     for i in range(nn):
-        count = 0
-        mtot = 0.0
-        first = -1
-        second = -1
-        for f in range(nf):
-            if gmass[f, i] > mass_cutoff:
-                count += 1
-                mtot += gmass[f, i]
-                if first < 0:
-                    first = f
-                elif second < 0:
-                    second = f
+        count, first, second, mtot = _fields_at(gmass, i, mass_cutoff)
         if count < 2:
             continue
         if count == 2:

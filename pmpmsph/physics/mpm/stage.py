@@ -62,6 +62,12 @@ class MPMStage:
         #: per velocity field (one per body with multi-field contact): a fluid's?
         self._fluid_field = np.array([case.materials[b.material].fluid for b in case.bodies]
                                      if self.multi else [False])
+        # how far a particle reaches nodes for the contact (cells per axis): GIMP 1 + its own
+        # half-width, CPDI's deformed domain the bound the grid keeps for it, the other
+        # shapes their support
+        self._reach_by_lp = self.shape.half_width > 0.0 and not self.shape.corners
+        self._reach_support = (float(spec.cpdi_reach) + 1.0 if self.shape.corners
+                               else self.shape.support)
         self.halo_enabled = True
         self.timers = timers if timers is not None else Timers()
         self.set_decomposition(decomposition)
@@ -278,14 +284,9 @@ class MPMStage:
         contact_normals(self.dim, g.mass, g.mgrad, self._fluid_field, self.mass_cutoff,
                         g.normals, g.reach)
         n = self.n_p2g
-        # how far a particle reaches nodes (cells per axis): GIMP 1 + its half-width, CPDI's
-        # deformed domain the bound the grid keeps for it, the other shapes their support
-        gimp = self.shape.half_width > 0.0 and not self.shape.corners
-        support = (float(self.case.mpm.cpdi_reach) + 1.0 if self.shape.corners
-                   else self.shape.support)
-        surface_reach(self.dim, p["x"][:n], p["vol"][:n], p["body"][:n],
-                      p["lp"][:n] if gimp else None, g.node0, g.offset, g.inv_dx, g.strides,
-                      support, g.normals, g.reach)
+        lp = p["lp"][:n] if self._reach_by_lp else None
+        surface_reach(self.dim, p["x"][:n], p["vol"][:n], p["body"][:n], lp, g.node0,
+                      g.offset, g.inv_dx, g.strides, self._reach_support, g.normals, g.reach)
         if self.halo_enabled:  # (inside the "grid" phase)
             self.halo.maximum([g.reach])
         if g.folded:
