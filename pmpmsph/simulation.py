@@ -16,13 +16,13 @@ import numpy as np
 
 from .config.case import Case, GridSpec
 from .initial_particles import build_particles, material_arrays, sph_stage_class
-from .errors import ConfigError, RunError
+from .errors import RunError
 from .io.checkpoint import STOP
 from .io.folders import check_output_folder
 from .io.output import Output
 from .io.restart import Restart
 from .kernels.deformation import jacobian
-from .kernels.diagnostics import max_signal_speed, particle_sums
+from .kernels.diagnostics import particle_sums
 from .materials.dispatch import material_tag
 from .parallel.decomposition import Decomposition, default_axis
 from .parallel.distributor import Distributor
@@ -33,6 +33,7 @@ from .physics.coupling import interface_for
 from .physics.hydrostatic import hydrostatic_mpm
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm.stage import MPMStage
+from .time_step import TimeStepControl
 from .timing import Timers
 from .warmup import compile_kernels
 
@@ -49,7 +50,7 @@ def _hms(seconds):
     return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
 
 
-class Simulation(Output, Restart, Rebalancing):
+class Simulation(Output, Restart, Rebalancing, TimeStepControl):
     def __init__(self, case: Case, dist: Optional[Distributor] = None,
                  out_dir: Optional[str] = None, overwrite: bool = False,
                  write_output: bool = True, out_key: str = "--out",
@@ -156,79 +157,6 @@ class Simulation(Output, Restart, Rebalancing):
                 case.domain[1][axis] - case.domain[0][axis])
         return Decomposition(self.dist, spec, axis=axis,
                              key="grid.cells" if case.grid else "domain", period=period)
-
-    # -- time step --------------------------------------------------------------------------
-    def _local_signal_speed(self):
-        """This rank's max (c + |v|) over its owned particles (no collective)."""
-        p = self.particles
-        n = p.n_owned
-        if self.mpm is None and self.sph is not None:
-            c = self.sph.signal_speed()
-            if c is not None:
-                return c
-        mtypes, mparams = self.materials
-        return max_signal_speed(self.dim, p["v"][:n], p.deformation(n), p["mat"][:n], mtypes,
-                                mparams)
-
-    def signal_speed(self):
-        """Global max (c + |v|): reduced in the step's allreduce when the step computed it
-        (from the MPM step's G2P when that saw the final state: pure MPM, no prescribed
-        velocities, not USF; else a pass over the particles), else reduced here."""
-        if self._fused_signal[0] == self.step_count:  # already the global maximum
-            return self._fused_signal[1]
-        return self.dist.max(self._local_signal_speed())
-
-    def stable_dt(self) -> float:
-        """CFL limit with Courant number 1: h / max(c + |v|) (and the SPH viscous limit)."""
-        c = self.signal_speed()
-        limit = self.h / c if c > 0 else math.inf
-        if self.sph is not None:
-            if self._fused_sph_limit[0] == self.step_count:
-                limit = min(limit, self._fused_sph_limit[1])
-            else:
-                limit = min(limit, self.sph.stable_dt())
-        return limit
-
-    def _initial_dt(self):
-        tspec = self.case.time
-        limit = self.stable_dt()  # collective; the check below is local and agreed on
-
-        def check():
-            if tspec.dt is not None and tspec.dt > limit:
-                raise ConfigError("time.dt", f"{tspec.dt:g} is above the stable limit "
-                                  f"{limit:.4g} (= cell size / (wave speed + |v|))")
-            return tspec.dt if tspec.dt is not None else tspec.cfl * limit
-
-        return self.dist.agree("time", check)
-
-    def steps_to_end(self) -> float:
-        """About how many steps remain to time.end at the current dt."""
-        return max(self.case.time.end - self.time, 0.0) / self.dt
-
-    def check_step_count(self, max_steps: Optional[int] = None) -> None:
-        """Refuse a run that would take more than time.max_steps steps (a dt typed 1e-15
-        would run until killed) unless `max_steps` (--max-steps) bounds it. Collective."""
-        tspec = self.case.time
-
-        def check():
-            steps = self.steps_to_end()
-            if max_steps is None and steps > tspec.max_steps:
-                key = "time.dt" if tspec.dt is not None else "time.end"
-                how = f"dt = {self.dt:.4g}" + ("" if tspec.dt is not None else " (from cfl)")
-                raise ConfigError(key, f"{how} and end = {tspec.end:g} mean about "
-                                  f"{steps:.3g} steps, more than time.max_steps = "
-                                  f"{tspec.max_steps}: check dt and end, or raise "
-                                  "time.max_steps (or bound the run with --max-steps) if you "
-                                  "mean it")
-
-        self.dist.agree("time", check)
-
-    def _update_dt(self):
-        if self.case.time.cfl is not None:
-            limit = self.stable_dt()
-            if not math.isfinite(limit) or limit <= 0:
-                raise RunError(self.step_count, -1, "no finite time step (NaN velocity/stress)")
-            self.dt = self.case.time.cfl * limit
 
     def diagnostics(self) -> dict[str, float]:
         """Global sums as a dict (every rank gets the same numbers)."""
