@@ -38,6 +38,10 @@ class Scene:
         self.data.setdefault("boundaries", []).append(spec)
         return self
 
+    def damping(self, **spec: Any) -> Scene:
+        self.data.setdefault("damping", []).append(spec)
+        return self
+
     def load(self, **spec: Any) -> Scene:
         self.data.setdefault("loads", []).append(spec)
         return self

@@ -31,6 +31,7 @@ from .parallel.rebalancing import Rebalancing
 from .parallel.migration import MigrationSchedule, migrate, plan_migration
 from .physics.coupling import interface_for
 from .physics.hydrostatic import hydrostatic_mpm
+from .physics.damping import DampingZones
 from .physics.loads import PrescribedVelocity, TractionLoads
 from .physics.mpm.stage import MPMStage
 from .time_step import TimeStepControl
@@ -81,6 +82,8 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
+        self.damping = (DampingZones(case.damping, case, self.particles)
+                        if case.damping else None)
         self._sums = np.zeros(7)
         # the energy of one material type is called directly, not through the type switch;
         # from the case's bodies (not this rank's particles, which migrate), as in MPMStage
@@ -205,6 +208,8 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         self.coupling.after_sph(self.dt)
         if self.prescribed is not None:
             self.prescribed.apply(self.time, self.dt, x_before)
+        if self.damping is not None:
+            self.damping.apply(self.dt)
         dec = self.decomposition
         # a scene that migrates every step plans it before the step's allreduce, which then
         # carries the flag of a particle skipping a slab too (one collective fewer)

@@ -171,6 +171,17 @@ class PrescribedSpec:
 
 
 @dataclass(frozen=True)
+class DampingSpec:
+    """A wave absorber: the fluids' particle velocities inside `region` are damped at a rate
+    growing from 0 on the box's face opposite `direction` to `rate` (1/s) on its face
+    `direction` (physics/damping.py)."""
+    region: Region
+    direction: str = "x+"
+    rate: float = 10.0
+    key: str = ""
+
+
+@dataclass(frozen=True)
 class MethodRegion:
     """Particles of non-wall bodies inside `geometry` are seeded (and, with handover,
     relabelled) as `method` (seed 000 §4: MPM and SPH regions)."""
@@ -245,6 +256,7 @@ class Case:
     boundaries: tuple = ()
     loads: tuple = ()
     prescribed: tuple = ()
+    damping: tuple = ()             # DampingSpec: wave absorbers on the fluids
     gravity: tuple[float, ...] = ()
     time: Optional[TimeSpec] = None
     output: OutputSpec = field(default_factory=OutputSpec)

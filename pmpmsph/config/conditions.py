@@ -1,12 +1,13 @@
 """Case-file sections that select a region and act on it: `[[boundaries]]` (grid faces or
-boxes), `[[loads]]` (traction or stress on a body's particles in a box) and `[[prescribed]]`
-(velocities of a body's particles in a box); part of config/load.py, whose rules they keep:
+boxes), `[[loads]]` (traction or stress on a body's particles in a box), `[[prescribed]]`
+(velocities of a body's particles in a box) and `[[damping]]` (wave absorbers on the fluids'
+particles in a box); part of config/load.py, whose rules they keep:
 every error is a `ConfigError` naming the dotted TOML key."""
 import math
 
 from ..errors import ConfigError
 from ..kernels.mpm.grid_conditions.registry import condition_named, grid_conditions
-from .case import BC_KINDS, BoundarySpec, LoadSpec, PrescribedSpec, Region
+from .case import BC_KINDS, BoundarySpec, DampingSpec, LoadSpec, PrescribedSpec, Region
 from .table import is_finite
 
 FACES = ("x-", "x+", "y-", "y+", "z-", "z+")
@@ -128,3 +129,20 @@ def _prescribed(t, dim, body_names):
     until = t.number("until", math.inf, min=0.0) if t.has("until") else math.inf
     t.finish()
     return PrescribedSpec(body, region, tuple(vel), start, until, t.path)
+
+
+def _damping(t, dim):
+    """A wave absorber (DualSPHysics' damping zone): a box, the face towards which the damping
+    grows (`direction`) and its full rate (1/s; 10 as DualSPHysics' default)."""
+    if t.has("face"):
+        raise ConfigError(t.key("face"), "a damping zone is a box of particles: give box = "
+                          "{ min = [...], max = [...] }")
+    region = _region(t, dim)
+    direction = t.string("direction", choices=FACES[: 2 * dim])
+    a = "xyz".index(direction[0])
+    if region.hi[a] <= region.lo[a]:
+        raise ConfigError(t.key("box") + ".max", f"the box has no depth along {direction[0]}, "
+                          "the direction the damping grows in")
+    rate = t.number("rate", 10.0, min_open=0.0)
+    t.finish()
+    return DampingSpec(region, direction, rate, t.path)

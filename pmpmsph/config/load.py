@@ -16,7 +16,7 @@ from ..materials import material_from_table
 from ..physics.mpm.transfer_schemes import TRANSFER_SCHEMES
 from .case import (CONTACTS, SHAPES, TRANSFERS, VELOCITY_UPDATES, Case, CouplingSpec, MPMSpec,
                    OutputSpec, ParallelSpec, TimeSpec)
-from .conditions import _boundary, _load, _prescribed
+from .conditions import _boundary, _damping, _load, _prescribed
 from .sections import (CASE_DIR, _body, _check_mpm_hydrostatic, _check_periodic, _domain,
                        _grid, _method_region, _sph)
 from .table import Table
@@ -239,6 +239,10 @@ def case_from_dict(data, name="case", text=""):
     if len({ld.ramp for ld in loads}) > 1:
         raise ConfigError("loads[1].ramp", "all loads share one ramp time in this version")
     prescribed = tuple(_prescribed(pt, dim, names) for pt in root.subs("prescribed"))
+    damping = tuple(_damping(dt, dim) for dt in root.subs("damping"))
+    if damping and not any(materials[b.material].fluid for b in bodies):
+        raise ConfigError(damping[0].key, "a damping zone acts on fluids and this scene has "
+                          "none")
     gravity = root.vector("gravity", dim, (0.0,) * dim)
     if mpm.hydrostatic:
         _check_mpm_hydrostatic(bodies, materials, gravity)
@@ -281,7 +285,8 @@ def case_from_dict(data, name="case", text=""):
     pt.finish()
     root.finish()
     case = Case(name=name, dim=dim, grid=grid, mpm=mpm, materials=materials, bodies=bodies,
-                boundaries=boundaries, loads=loads, prescribed=prescribed, gravity=gravity,
+                boundaries=boundaries, loads=loads, prescribed=prescribed, damping=damping,
+                gravity=gravity,
                 time=TimeSpec(end, dt, cfl, max_steps), output=output, parallel=parallel, sph=sph,
                 domain=domain, periodic=periodic, regions=regions, coupling=coupling,
                 text=text)
