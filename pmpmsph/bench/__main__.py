@@ -73,6 +73,8 @@ def main(argv: "list[str] | None" = None) -> None:
                     "4 in SPH water)")
     fl.add_argument("--shape", default=None, help="the MPM bodies' shape function (default: "
                     "quadratic in MPM water, gimp in SPH water)")
+    fl.add_argument("--absorber", type=float, default=0.1,
+                    help="width of the wave absorbers at the tank's ends (0: none)")
     fl.add_argument("--out", default="bench_results")
     pl = sub.add_parser("plate", help="water on an elastic clamped plate, mid-span deflection "
                         "against the clamped beam (plate_fsi.py)")
