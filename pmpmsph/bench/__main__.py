@@ -65,7 +65,7 @@ def main(argv: "list[str] | None" = None) -> None:
     fl.add_argument("--blocks", type=int, nargs="+", default=None,
                     help="indices into floats.BLOCKS (default: all)")
     fl.add_argument("--spacing", type=float, default=0.005)
-    fl.add_argument("--end", type=float, default=3.0)
+    fl.add_argument("--end", type=float, default=4.0)
     fl.add_argument("--velocity-update", default="apic", choices=["apic", "pic", "flip"],
                     help="of the MPM bodies (pic: the FLIP blend at 0)")
     fl.add_argument("--cell-spacings", type=int, default=None,

@@ -46,7 +46,7 @@ BLOCKS = ((0.10, 0.06, 0.80, 0.010), (0.08, 0.04, 0.50, 0.020), (0.14, 0.04, 0.9
 
 
 def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, depth=0.2,
-                spacing=0.005, end=3.0, cell_spacings=None, velocity_update="apic",
+                spacing=0.005, end=4.0, cell_spacings=None, velocity_update="apic",
                 contact="multi", shape=None, transfer="musl", absorber=0.1):
     """The scene of one float (module doc); grid cells of `cell_spacings` spacings and the MPM
     bodies' `shape` function, by default (None) those that do best in each water: in MPM
