@@ -15,8 +15,8 @@ block 3 (0.12 x 0.06, s = 0.65) +0.1 / -1.7 % / 0.002, block 4 (0.06 x 0.05, s =
 -1.9 / -2.6 % / 0.001, block 5 (0.16 x 0.08, s = 0.70) +0.2 / -0.9 % / 0.002. NOT within
 3 %: block 1 (0.08 x 0.04, s = 0.5, 4 cells wide), -16.8 / -17.5 %. At spacing 0.005 and
 T = 3 the blocks sit -2 to -6 % (docs/floats.md: the errors scatter by 0.2-0.4 spacings and
-are not shown to converge). SPH block 0 in the same water: +1.4 / +0.2 %; the other SPH
-blocks are not within 3 % (-14 to +5 %).
+are not shown to converge). SPH block 0 in the same water: +1.4 / +0.2 %, passing through
+Archimedes' draft while still sinking; the other SPH blocks are not within 3 % (-35 to +5 %).
 """
 import pytest
 from mpi4py import MPI
@@ -44,8 +44,11 @@ def test_mpm_block_in_mpm_water_floats_at_archimedes(block, expected, expected_l
     assert r["settle"] < 0.01      # the issue's bound: at rest
 
 
-def test_sph_block_in_mpm_water_floats_at_archimedes():
-    """Block 0 only: the other SPH blocks are not within 3 % (docs/floats.md)."""
+def test_sph_block_in_mpm_water_passes_archimedes_still_sinking():
+    """Block 0 only: the other SPH blocks are not within 3 % (docs/floats.md). NOT settled
+    either, though `settle` passes: the block is still sinking at about 1.3 mm/s (0.3 % of
+    its impact speed, under the issue's 1 % bound) through Archimedes' draft, -7 % at t = 2
+    (rest level), +3 % at t = 5; the mean over 3.2-4 s is what is asserted."""
     r = _run("sph_in_mpm", 0)
     assert abs(r["error"]) < 0.03 and abs(r["error_level"]) < 0.03
     assert r["error"] == pytest.approx(0.014, abs=0.003)
