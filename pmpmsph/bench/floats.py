@@ -111,9 +111,9 @@ def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, d
                              ("right", [tank, 0.0], [tank + walls, top])):
             sc.body(name=name, method="sph", wall=True, material="water", shape="box",
                     min=lo, max=hi, spacing=sp)
-    for lo, hi, direction in (([0.0, -walls], [absorber, top], "x-"),
-                              ([tank - absorber, -walls], [tank, top], "x+")):
-        if absorber > 0:
+    if absorber > 0:
+        for lo, hi, direction in (([0.0, -walls], [absorber, top], "x-"),
+                                  ([tank - absorber, -walls], [tank, top], "x+")):
             sc.damping(box=dict(min=lo, max=hi), direction=direction)
     if water_method == "mpm":
         for face in ("x-", "x+", "y-"):

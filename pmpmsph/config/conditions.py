@@ -134,9 +134,7 @@ def _prescribed(t, dim, body_names):
 def _damping(t, dim):
     """A wave absorber (DualSPHysics' damping zone): a box, the face towards which the damping
     grows (`direction`) and its full rate (1/s; 10 as DualSPHysics' default)."""
-    if t.has("face"):
-        raise ConfigError(t.key("face"), "a damping zone is a box of particles: give box = "
-                          "{ min = [...], max = [...] }")
+    _no_face(t)
     region = _region(t, dim)
     direction = t.string("direction", choices=FACES[: 2 * dim])
     a = "xyz".index(direction[0])

@@ -61,7 +61,7 @@ def test_a_damping_zone_loads():
     ('direction = "x+"', 'direction = "z+"', "damping[0].direction", "unknown value"),
     ("rate = 40.0", "rate = 0.0", "damping[0].rate", "> 0"),
     ("box = { min = [0.5, 0.0], max = [1.0, 0.5] }", 'face = "x+"', "damping[0].face",
-     "box of particles"),
+     "inside a box"),
     ("max = [1.0, 0.5] }", "max = [0.5, 0.5] }", "damping[0].box.max", "no depth along x"),
     ("rate = 40.0", "rate = 40.0\nwidth = 1", "damping[0].width", "unknown key"),
     ('material = "water"', 'material = "rubber"', "damping[0]", "has none"),
