@@ -12,7 +12,8 @@ END, WINDOW = 0.5, 0.1
 
 
 def run_plate(dist, m, spacing, quick):
-    sc, ref = water_on_plate(m["combo"], spacing=spacing, end=END)
+    sc, ref = water_on_plate(m["combo"], spacing=spacing, end=END,
+                             hourglass=m.get("hourglass", 0.0))
     sim = sc.simulation(dist=dist)
     body = [b.name for b in sim.case.bodies].index("plate")
     y0 = start_heights(sim)
@@ -37,7 +38,7 @@ PLATE_FSI = dict(
     aux="against Timoshenko", knob="particle spacing",
     methods=[dict(label="coupled MPM plate / SPH water", family="coupled", combo="mpm_plate"),
              dict(label="coupled TL-SPH plate / MPM water", family="coupled",
-                  combo="sph_plate"),
+                  combo="sph_plate", hourglass=0.1),
              dict(label="MPM plate / MPM water (contact)", family="MPM", combo="mpm_mpm",
                   quick=True),
              # the UL-SPH plate runs 5x slower per particle (Verlet, correction, hourglass):

@@ -90,11 +90,11 @@ REASONS = [
      "41 x 41 is 0.981 ... 1.013 and the corner error against the 41 x 41 TL reference falls "
      "monotonically, 4.7 %, 2.7 %, 2.1 % at 11, 21, 41, slowly (order ~0.6: the uncorrected "
      "kernel is truncated at the free corner where the error is taken)"),
-    ("plate_fsi", r"TL-SPH plate", "the total-Lagrangian SPH plate does not survive MPM "
-     "water: the water's points push the plate's particles beside the clamps down faster "
-     "than mid-span until one leaves the grid (docs/plate.md), and the plate alone is too "
-     "soft at the thicknesses an FSI run affords (self-weight: +41, +19, +6.9 % against "
-     "Timoshenko at 2, 4, 8 particles through the thickness)"),
+    ("plate_fsi", r"TL-SPH plate", "until 2026-11-26 the total-Lagrangian stage rewrote "
+     "the MPM water's F and stress at every evaluation and the plate fell through; since "
+     "then it converges at first order (hourglass 0.1: +17.6, +8.8, +4.7 % at 2, 4, 8 "
+     "particles through the thickness), soft because the clamp lets the first free columns "
+     "rotate through the odd-even mode (docs/plate.md)"),
     ("plate_fsi", r"SPH UL plate", "the updated-Lagrangian plate (corrected kernel, "
      "hourglass control 2) does not hold a static bending load at 2 or 4 particles through "
      "the thickness: at 4 it sags to three times the beam's deflection and is still moving "

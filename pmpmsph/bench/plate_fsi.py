@@ -53,8 +53,10 @@ def plate_modulus(span, thickness, q, nu, ratio=0.01):
 
 
 def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, depth=0.1,
-                   rho_plate=7800.0, nu=0.3, damping=40.0, end=0.6, clamp_cells=2):
-    """The scene, and the reference dict (q, E, w_bending, w_shear)."""
+                   rho_plate=7800.0, nu=0.3, damping=40.0, end=0.6, clamp_cells=2,
+                   hourglass=0.0):
+    """The scene, and the reference dict (q, E, w_bending, w_shear). `hourglass`: the
+    total-Lagrangian plate's `[sph] hourglass` (sph_plate only)."""
     sp = spacing
     cell = 2.0 * sp
     wall = 3 * sp
@@ -78,7 +80,8 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
             # corrected kernel and the hourglass control of the plate with a hole (scene 11)
             sph.update(correction=True, hourglass=2.0, integrator="verlet")
     else:  # a total-Lagrangian SPH plate (the formulation that bends well, BENCHMARKS 12)
-        sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping)
+        sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping,
+                   hourglass=hourglass)
         # water and plate each in their own velocity field, in frictionless contact (an
         # SPH solid takes part in P2G as a body of its own: physics/sph/solid_in_fluid.py)
         mpm.update(hydrostatic=True, velocity_update="apic", contact="multi")
@@ -186,13 +189,16 @@ def run(args):
     """`python -m pmpmsph.bench plate`: each spacing of each combination; a table and
     `<out>/plate.csv`."""
     rows = []
+    if "sph_plate" in args.combos:
+        print(f"(the TL-SPH plate with [sph] hourglass = {args.hourglass:g})")
     print(f"{'combination':<12}{'spacing':>9}{'w (mm)':>9}{'EB (mm)':>9}{'error':>9}"
           f"{'Timosh.':>9}{'error':>9}{'spread':>8}{'wall s':>8}")
     for combo in args.combos:
         for sp in args.spacing:
             t0 = time.perf_counter()
             try:
-                t, w, ref = plate_run(combo, spacing=sp, end=args.end)
+                t, w, ref = plate_run(combo, spacing=sp, end=args.end,
+                                      hourglass=args.hourglass if combo == "sph_plate" else 0.0)
                 mean, spread = settled(t, w)
                 failure = ""
             except Exception as exc:  # a failed run is a row of the table, not the end

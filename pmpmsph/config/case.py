@@ -94,7 +94,7 @@ class SPHSpec:
                                        # al. 1997) or from the stress sigma = 2 mu dev(d)
     artificial_stress: float = 0.0     # epsilon of Gray, Monaghan & Swift (0: off)
     artificial_stress_exponent: float = 4.0
-    hourglass: float = 0.0             # updated solids: hourglass control factor kappa
+    hourglass: float = 0.0             # solids: hourglass control factor kappa
                                        # (kernels/sph/hourglass.py; 0: off)
     damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
     density_diffusion: float = 0.1     # fluids: delta of delta-SPH (Antuono 2010; 0: off)

@@ -131,13 +131,11 @@ def _body_spacing(body, grid=None):
 
 
 def _hourglass(t, formulation, integrator):
-    """[sph] hourglass: the factor kappa of the hourglass control (updated formulation, and
-    the Verlet integrator, whose drifts carry the control's displacements)."""
+    """[sph] hourglass: the factor kappa of the hourglass control; in the updated formulation
+    with the Verlet integrator, whose drifts carry the control's displacements (the total
+    one forms them as x - X0 with any integrator)."""
     kappa = t.number("hourglass", 0.0, min=0.0)
-    if kappa > 0.0 and formulation != "updated":
-        raise ConfigError(t.key("hourglass"), "the hourglass control is for the updated "
-                          "formulation (kernels/sph/hourglass.py)")
-    if kappa > 0.0 and integrator != "verlet":
+    if kappa > 0.0 and formulation == "updated" and integrator != "verlet":
         raise ConfigError(t.key("hourglass"), f"the hourglass control needs sph.integrator = "
                           f"'verlet' (got '{integrator}')")
     return kappa

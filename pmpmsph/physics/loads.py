@@ -72,8 +72,12 @@ class PrescribedVelocity:
         return ids
 
     def apply(self, time, dt=None, x_before=None):
-        """Set the prescribed components of v; after a step (`dt`, positions `x_before` at
-        its start) also move those particles with that velocity rather than the grid's."""
+        """Set the prescribed components of v; after a step (`dt`, the particles' gids and
+        positions `x_before` at its start, from `positions`) also move those particles with
+        that velocity rather than the grid's. The rows may have been reordered during the
+        step (a coupled scene sorts them by method and cell), so the start positions are
+        matched by gid: matched by row, clamped particles of a plate under MPM water traded
+        places and failed at step 2 (docs/plate.md)."""
         p = self.particles
         n = p.n_owned
         ids = p["vpres_id"][:n]
@@ -81,15 +85,26 @@ class PrescribedVelocity:
         for j, s in enumerate(self.specs):
             if not (s.start <= time < s.until):
                 continue
-            sel = ids == j
+            sel = np.nonzero(ids == j)[0]
+            if x_before is not None:  # (a row that arrived from another rank in the step
+                gids, xs = x_before[j]  # keeps the position its stage gave it)
+                at = np.minimum(np.searchsorted(gids, p["gid"][sel]), max(len(gids) - 1, 0))
+                known = gids[at] == p["gid"][sel] if len(gids) else np.zeros(len(sel), bool)
             for a, val in enumerate(s.velocity):
                 if val is not None:
-                    v[:n, a][sel] = val
+                    v[sel, a] = val
                     if x_before is not None:
-                        p.move(sel, a, x_before[j][:, a] + dt * val)
+                        p.move(sel[known], a, xs[at[known], a] + dt * val)
 
     def positions(self):
-        """Positions of each constraint's particles at the start of a step (for `apply`);
-        only those rows are copied."""
-        ids = self.particles["vpres_id"]
-        return [self.particles["x"][ids == j].copy() for j in range(len(self.specs))]
+        """(gids, positions) of each constraint's particles at the start of a step, sorted by
+        gid (for `apply`); only those rows are copied."""
+        p = self.particles
+        n = p.n_owned
+        ids = p["vpres_id"][:n]
+        out = []
+        for j in range(len(self.specs)):
+            rows = np.nonzero(ids == j)[0]
+            order = np.argsort(p["gid"][rows], kind="stable")
+            out.append((p["gid"][rows][order], p["x"][rows][order]))
+        return out

@@ -141,16 +141,17 @@ cfl = 0.3
 
 
 @pytest.mark.parametrize("old,new", [("hourglass = 2.0", "hourglass = -1.0"),
-                                     ("[sph]", '[sph]\nformulation = "total"'),
                                      ('integrator = "verlet"', 'integrator = "rk3"')])
 def test_the_option_and_its_bad_values(old, new):
-    """`[sph] hourglass` (default 0: off) takes kappa >= 0, in the updated formulation only
-    (the total one has no such control) and with the Verlet integrator (whose drifts carry
-    the control's displacements)."""
+    """`[sph] hourglass` (default 0: off) takes kappa >= 0; in the updated formulation with
+    the Verlet integrator (whose drifts carry the control's displacements), in the total one
+    with any (it forms them as x - X0)."""
     from pmpmsph import ConfigError, load_case_text
 
     assert load_case_text(CASE).sph.hourglass == 2.0
     assert load_case_text(CASE.replace("hourglass = 2.0\n", "")).sph.hourglass == 0.0
+    total = CASE.replace('[sph]', '[sph]\nformulation = "total"').replace('"verlet"', '"rk3"')
+    assert load_case_text(total).sph.hourglass == 2.0
     with pytest.raises(ConfigError) as err:
         load_case_text(CASE.replace(old, new))
     assert err.value.key == "sph.hourglass"

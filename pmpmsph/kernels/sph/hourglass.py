@@ -1,4 +1,6 @@
-"""Hourglass (zero-energy mode) control of updated-Lagrangian SPH solids (`[sph] hourglass`).
+"""Hourglass (zero-energy mode) control of SPH solids (`[sph] hourglass`), updated- and
+total-Lagrangian (the total stage forms u = x - X0 at each evaluation and uses the
+reference-configuration half lists: physics/sph/total_lagrangian.py).
 
 With the corrected gradient of `correction` (Bonet & Lok), the velocity gradient of a
 particle does not see a displacement that alternates in sign from particle to particle (on a

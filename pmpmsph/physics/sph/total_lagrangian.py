@@ -20,13 +20,15 @@ import numpy as np
 
 from ...errors import RunError
 from ...kernels.neighbours import neighbour_lists
-from ...kernels.sph.rates import sph_stress_all
+from ...kernels.sph.hourglass import hourglass_fit, hourglass_forces
+from ...kernels.sph.rates import sound_speeds, sph_stress_all
 from ...kernels.sph.integrate import add_scaled, first_outside
 from ...kernels.sph.kernel_functions import SUPPORT
 from ...kernels.sph.tlsph import (deformation_gradient, first_piola, internal_force,
                              kernel_correction, velocity_gradient)
 from ...parallel.particle_halo import ParticleHalo
 from ...particles import FieldSpec
+from ..scratch import rows_at_least
 from .stage import HALO_MARGIN, SPHStage
 
 
@@ -50,6 +52,8 @@ class TLSPHStage(SPHStage):
         ]
         if state:
             out.append(FieldSpec("mstate0", (state,), halo=True))
+        if case.sph.hourglass > 0.0:  # the fitted gradient of the hourglass control
+            out.append(FieldSpec("Fh", (3, 3), migrate=False, halo=True))
         return out
 
     def __init__(self, case, particles, materials, decomposition, dist, timers=None):
@@ -60,6 +64,17 @@ class TLSPHStage(SPHStage):
         self.rate = spec.deformation == "rate"
         self.current_force = spec.force == "current"
         self.ref = None  # (start0, index0, gw0) of the reference configuration
+        # hourglass control (kernels/sph/hourglass.py) over half lists of the reference
+        # configuration; u = x - X0 is formed at each evaluation (no integrated field)
+        self.hourglass = spec.hourglass
+        self._A = np.zeros((0, 3, 3))
+        # the materials of the SPH solids: their rows (and MPM points of the same material,
+        # seed 000's region coupling) form the reference configuration; the rows of other
+        # materials, e.g. an MPM fluid's points, are neither neighbours nor written here
+        names = list(case.materials)
+        self.tl_materials = np.array(sorted({names.index(b.material) for b in case.bodies
+                                             if b.method == "sph" and not b.wall}), np.int64)
+        self.others = None  # mask of the rows of other materials (None: there are none)
         self.want_L = True  # F is integrated (eq. 9) or recomputed: advance it in any case
 
     def set_decomposition(self, decomposition):
@@ -115,23 +130,57 @@ class TLSPHStage(SPHStage):
             return self.ref
         X0 = p.with_halo("X0")
         nt = p.n_total
+        others = ~np.isin(p.with_halo("mat"), self.tl_materials)
+        self.others = others if others.any() else None
         with self.timers.phase("neighbours"):
-            start, index = neighbour_lists(X0, nt, SUPPORT * self.h)
+            start, index = self._own_pairs(*neighbour_lists(X0, nt, SUPPORT * self.h))
         with self.timers.phase("sph"):
             gw0 = np.empty((len(index), self.dim))
             wt0 = np.empty(len(index))
             kernel_correction(X0, p.with_halo("vol0"), start, index, self.h, self.kern,
                               self.dim, self.corrected, wt0, gw0)
         self.ref = (start, index, gw0)
+        if self.hourglass > 0.0:
+            self.ref_half = neighbour_lists(X0, p.n_owned, SUPPORT * self.h, half=True)
         self.n_total_build = nt
         self.rebuilds += 1
         return self.ref
 
+    def _own_pairs(self, start, index):
+        """The CSR lists (start, index) without the pairs that touch a row of another
+        material or join two materials (the lists unchanged when every row is a solid's)."""
+        if self.others is None:
+            return start, index
+        mat = self.p.with_halo("mat")
+        rows = np.repeat(np.arange(len(start) - 1), np.diff(start))
+        keep = ~self.others[rows] & ~self.others[index] & (mat[rows] == mat[index])
+        kept = np.zeros_like(start)
+        np.cumsum(np.bincount(rows[keep], minlength=len(start) - 1), out=kept[1:])
+        return kept, index[keep]
+
+    #: the per-row state an evaluation writes, which rows of other materials keep
+    WRITTEN = ("F", "L", "sigma", "vol", "rho")
+
     def evaluate(self, dt_state=0.0):
-        """Accelerations of the owned particles at the current state (and F, stress, L)."""
-        p, t = self.p, self.timers
+        """Accelerations of the owned particles at the current state (and F, stress, L).
+        The rows of other materials (the points of an MPM fluid in a coupled scene) keep
+        their own F, L, stress, volume, density and material state."""
+        p = self.p
         self._exchange()
-        start0, index0, gw0 = self._reference()
+        self._reference()
+        if self.others is None:
+            self._evaluate(dt_state)
+            return
+        others = self.others
+        names = self.WRITTEN + (("mstate",) if "mstate" in p else ())
+        kept = {name: p.with_halo(name)[others] for name in names}
+        self._evaluate(dt_state)
+        for name, rows in kept.items():
+            p.with_halo(name)[others] = rows
+
+    def _evaluate(self, dt_state):
+        p, t = self.p, self.timers
+        start0, index0, gw0 = self.ref
         nt, n = p.n_total, p.n_owned
         x, v, F = p.with_halo("x"), p.with_halo("v"), p.with_halo("F")
         vol0, vol = p.with_halo("vol0"), p.with_halo("vol")
@@ -142,12 +191,14 @@ class TLSPHStage(SPHStage):
             J = np.linalg.det(F)
             vol[:] = J * vol0
             p.with_halo("rho")[:] = p.with_halo("mass") / vol
+            if self.others is not None:  # (rows of other materials have F restored after)
+                J[self.others] = 1.0
             inverted = np.nonzero(~(J[:n] > 0))[0]  # owned rows only: halo rows are their
             if len(inverted) and self._bad < 0:     # owners' to report
                 self._bad = int(inverted[0])
             need_current = self.current_force or self.rate
             if need_current:
-                start, index = neighbour_lists(x, nt, SUPPORT * self.h)
+                start, index = self._own_pairs(*neighbour_lists(x, nt, SUPPORT * self.h))
                 gw = np.empty((len(index), self.dim))
                 wt = np.empty(len(index))
                 kernel_correction(x, vol, start, index, self.h, self.kern, self.dim,
@@ -167,10 +218,41 @@ class TLSPHStage(SPHStage):
                 internal_force(start0, index0, gw0, vol0, P, self.dim, f)
             acc = p["acc"]
             acc[:] = f[:n] / p["mass"][:, None] + self.gravity[: self.dim]
+        if self.hourglass > 0.0:
+            self._hourglass(acc)
+        with t.phase("sph"):
             if self.spec.damping:
                 acc -= self.spec.damping * p["v"]
         self.evaluated = True
         self.evaluations += 1
+
+    def _hourglass(self, acc):
+        """Adds the hourglass control of kernels/sph/hourglass.py to acc: the pair penalty on
+        each particle's distance from where its neighbours' fitted deformation gradient puts
+        it (Ganzenmueller 2015, written for this total-Lagrangian form), which resists the
+        odd-even mode the corrected kernel does not see (docs/plate.md: at a clamp it let the
+        first free columns slip and rotate, +19 % deflection at 4 particles through a
+        plate's thickness)."""
+        p, t = self.p, self.timers
+        n, nt = p.n_owned, p.n_total
+        start, index = self.ref_half
+        X0, rho = p.with_halo("X0"), p.with_halo("rho")
+        method, mat, mass = p.with_halo("method"), p.with_halo("mat"), p.with_halo("mass")
+        u = p.with_halo("x") - X0
+        cs = np.empty(nt)
+        self._A = rows_at_least(self._A, n)
+        with t.phase("sph"):
+            sound_speeds(self.dim, nt, method, mat, rho, p.with_halo("F"), self.mtypes,
+                         self.mparams, cs)
+            hourglass_fit(self.dim_tag, self.kern_tag, self.h, n, u, X0, mass, rho, method,
+                          mat, self.fluid, start, index, self._A, p.with_halo("Fh"))
+        if self.halo_enabled and self.dist.size > 1:
+            with t.phase("halo"):
+                self.halo.refresh(("Fh",))
+        with t.phase("sph"):
+            hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, u, X0, p.with_halo("Fh"),
+                             mass, rho, cs, method, mat, self.fluid, start, index,
+                             self.hourglass, acc)
 
     def initialise(self):
         self._bad = -1
