@@ -148,12 +148,12 @@ class TLSPHStage(SPHStage):
 
     def _own_pairs(self, start, index):
         """The CSR lists (start, index) without the pairs that touch a row of another
-        material or join two materials (the lists unchanged when every row is a solid's)."""
+        material (the lists unchanged when every row is of an SPH solid's material; two such
+        materials touching at the start stay joined, as before)."""
         if self.others is None:
             return start, index
-        mat = self.p.with_halo("mat")
         rows = np.repeat(np.arange(len(start) - 1), np.diff(start))
-        keep = ~self.others[rows] & ~self.others[index] & (mat[rows] == mat[index])
+        keep = ~self.others[rows] & ~self.others[index]
         kept = np.zeros_like(start)
         np.cumsum(np.bincount(rows[keep], minlength=len(start) - 1), out=kept[1:])
         return kept, index[keep]
