@@ -82,6 +82,8 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
+        if self.prescribed is not None and self.sph is not None:
+            self.sph.constraint = self.prescribed  # held within the SPH stages' steps
         self.damping = (DampingZones(case.damping, case, self.particles)
                         if case.damping else None)
         self._sums = np.zeros(7)

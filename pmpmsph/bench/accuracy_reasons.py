@@ -92,7 +92,7 @@ REASONS = [
      "kernel is truncated at the free corner where the error is taken)"),
     ("plate_fsi", r"TL-SPH plate", "until 2026-11-26 the total-Lagrangian stage rewrote "
      "the MPM water's F and stress at every evaluation and the plate fell through; since "
-     "then it converges at first order (hourglass 0.1: +17.6, +8.8, +4.7 % at 2, 4, 8 "
+     "then it converges at first order (hourglass 0.1: +17.5, +8.7, +4.7 % at 2, 4, 8 "
      "particles through the thickness), soft because the clamp lets the first free columns "
      "rotate through the odd-even mode (docs/plate.md)"),
     ("plate_fsi", r"SPH UL plate", "the updated-Lagrangian plate (corrected kernel, "

@@ -62,6 +62,7 @@ class PrescribedVelocity:
     def __init__(self, specs, particles):
         self.specs = specs
         self.particles = particles
+        self.time = 0.0  # of the step being taken (the last `apply` at a step's start)
 
     @staticmethod
     def seed(specs, x, body_name):
@@ -82,6 +83,8 @@ class PrescribedVelocity:
         n = p.n_owned
         ids = p["vpres_id"][:n]
         v = p["v"]
+        if x_before is None:
+            self.time = time
         for j, s in enumerate(self.specs):
             if not (s.start <= time < s.until):
                 continue
@@ -95,6 +98,22 @@ class PrescribedVelocity:
                     v[sel, a] = val
                     if x_before is not None:
                         p.move(sel[known], a, xs[at[known], a] + dt * val)
+
+    def hold(self, acc):
+        """Zero the prescribed components of the owned rows' accelerations `acc` (an SPH
+        stage calls this after each evaluation), so that within a step the held particles
+        keep their prescribed velocity. Without it a clamped particle moved by its reaction
+        force within every step and was put back after it, and an updated-Lagrangian solid
+        integrated the undone motion into F: a clamped SPH plate under its own weight crept
+        without end (docs/plate.md)."""
+        n = self.particles.n_owned
+        ids = self.particles["vpres_id"][:n]
+        for j, s in enumerate(self.specs):
+            if s.start <= self.time < s.until:
+                sel = ids == j
+                for a, val in enumerate(s.velocity):
+                    if val is not None:
+                        acc[:n, a][sel] = 0.0
 
     def positions(self):
         """(gids, positions) of each constraint's particles at the start of a step, sorted by

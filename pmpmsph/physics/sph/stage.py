@@ -119,6 +119,8 @@ class SPHStage:
         self.dist = dist
         self.halo_enabled = True
         self.halo = None
+        # prescribed velocities (physics/loads.py PrescribedVelocity), held within a step
+        self.constraint = None
         self.set_decomposition(decomposition)
         self.use_as = spec.artificial_stress > 0.0
         self.w_dp = kernel_w(self.kern, self.dim, spec.spacing, self.h) if self.use_as else 1.0
@@ -407,6 +409,8 @@ class SPHStage:
                                  rho, p.with_halo("cs"), p.with_halo("method"),
                                  p.with_halo("mat"), self.fluid, self.start, self.index,
                                  self.hourglass, p.with_halo("acc"))
+        if self.constraint is not None:
+            self.constraint.hold(p["acc"])
         self.evaluated = True
         self.evaluations += 1
 

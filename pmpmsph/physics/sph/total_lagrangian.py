@@ -223,6 +223,8 @@ class TLSPHStage(SPHStage):
         with t.phase("sph"):
             if self.spec.damping:
                 acc -= self.spec.damping * p["v"]
+            if self.constraint is not None:
+                self.constraint.hold(acc)
         self.evaluated = True
         self.evaluations += 1
 
