@@ -105,6 +105,7 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         self.h = min(min(case.grid.cell_size) if case.grid else np.inf,
                      case.sph.h if case.sph else np.inf)
         self.dt = self._initial_dt()
+        self.first_dt = self.dt  # for the collapse check (time_step.py); kept on restart
         if check_steps:
             self.check_step_count(max_steps)
         self.writer = self.diag = None

@@ -8,8 +8,15 @@ from __future__ import annotations
 import math
 from typing import Optional
 
+import numpy as np
+
 from .errors import ConfigError, RunError
 from .kernels.diagnostics import max_signal_speed
+
+#: a CFL time step below this fraction of the first one stops the run: the speeds (or wave
+#: speeds) grew a thousandfold, which no stable solution does; without the stop a blowing-up
+#: run crawls on with an ever smaller dt instead of failing
+DT_COLLAPSE = 1e-3
 
 
 class TimeStepControl:
@@ -83,4 +90,21 @@ class TimeStepControl:
             limit = self.stable_dt()
             if not math.isfinite(limit) or limit <= 0:
                 raise RunError(self.step_count, -1, "no finite time step (NaN velocity/stress)")
-            self.dt = self.case.time.cfl * limit
+            dt = self.case.time.cfl * limit
+            if dt < DT_COLLAPSE * self.first_dt:  # the same verdict on every rank
+                self._collapsed(dt)
+            self.dt = dt
+
+    def _collapsed(self, dt):
+        """Stop a run whose CFL step fell below DT_COLLAPSE of the first one, naming the
+        fastest particle of all ranks (collective)."""
+        p = self.particles
+        n = p.n_owned
+        speed = np.linalg.norm(p["v"][:n], axis=1) if n else np.zeros(1)
+        k = int(np.argmax(speed))
+        local = (float(speed[k]), int(p["gid"][k]) if n else -1)
+        fastest, gid = max(self.dist.allgather(local))
+        raise RunError(self.step_count, gid, f"the time step collapsed to {dt:.3g} s, below "
+                       f"{DT_COLLAPSE:g} of the first ({self.first_dt:.3g} s): the wave or "
+                       f"particle speeds grew a thousandfold (particle speeds up to "
+                       f"{fastest:.3g} m/s), the solution is blowing up")
