@@ -48,8 +48,8 @@ def test_tlsph_plate_under_mpm_water_settles_still_too_soft():
     0.1) under MPM water (its own velocity field, frictionless contact) settles, but is not
     within 3 % of the beam at four particles through the thickness: +8.7 % at 0.005 (0.5 s;
     +20.4 % without the control). It converges at first order, +17.5 / +8.7 / +4.7 % at
-    2 / 4 / 8 particles (docs/plate.md): the clamp's odd-even mode, which the control only
-    partly resists. Before 2026-11-26 it failed (the stage rewrote the water's state)."""
+    2 / 4 / 8 particles (docs/plate.md): an excess compliance at the clamps' edges (not
+    the odd-even mode), which the control's own bending stiffness partly offsets. Before 2026-11-26 it failed (the stage rewrote the water's state)."""
     t, w, ref = plate_run("sph_plate", spacing=0.005, end=0.3, hourglass=0.1,
                           dist=Distributor(MPI.COMM_SELF))
     mean, spread = settled(t, w)
