@@ -83,7 +83,7 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
         if self.prescribed is not None and self.sph is not None:
-            self.sph.constraint = self.prescribed  # held within the SPH stages' steps
+            self.sph.set_constraint(self.prescribed)  # held within the SPH stages' steps
         self.damping = (DampingZones(case.damping, case, self.particles)
                         if case.damping else None)
         self._sums = np.zeros(7)

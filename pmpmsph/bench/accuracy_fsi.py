@@ -38,7 +38,7 @@ PLATE_FSI = dict(
     aux="against Timoshenko", knob="particle spacing",
     methods=[dict(label="coupled MPM plate / SPH water", family="coupled", combo="mpm_plate"),
              dict(label="coupled TL-SPH plate / MPM water", family="coupled",
-                  combo="sph_plate", hourglass=0.1),
+                  combo="sph_plate"),  # mirror clamps, no hourglass control
              dict(label="MPM plate / MPM water (contact)", family="MPM", combo="mpm_mpm",
                   quick=True),
              # the UL-SPH plate runs 5x slower per particle (Verlet, correction, hourglass):

@@ -115,10 +115,12 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
                 dict(box=dict(min=[lo, thickness + eps], max=[hi, top + cell]), type="slip",
                      normal=[nx_, 0.0])])
     if plate_method == "sph":
-        for lo, hi in ((-clamp - sp, 0.0), (span, span + clamp + sp)):
-            sc.data.setdefault("prescribed", []).append(
-                dict(body="plate", box=dict(min=[lo, -sp], max=[hi, thickness + sp]),
-                     velocity=[0.0, 0.0]))
+        for lo, hi, face in ((-clamp - sp, 0.0, "x+"), (span, span + clamp + sp, "x-")):
+            held = dict(body="plate", box=dict(min=[lo, -sp], max=[hi, thickness + sp]),
+                        velocity=[0.0, 0.0])
+            if fluid_method == "mpm":  # the total-Lagrangian plate: a mirror clamp
+                held["mirror"] = face
+            sc.data.setdefault("prescribed", []).append(held)
     if plate_method == "sph" and fluid_method == "mpm":  # slip grid walls for the water
         for lo, hi, nx_ in ((x0 - cell, eps, -1.0), (span - eps, x0 + (nx + 1) * cell, 1.0)):
             sc.data.setdefault("boundaries", []).append(

@@ -168,6 +168,9 @@ class PrescribedSpec:
     start: float = 0.0
     until: float = float("inf")
     key: str = ""
+    #: a clamp face of the box ("x+", ...) across which the held particles of a
+    #: total-Lagrangian SPH body mirror the free ones (physics/sph/mirror_clamp.py), or None
+    mirror: Optional[str] = None
 
 
 @dataclass(frozen=True)

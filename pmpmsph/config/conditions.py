@@ -127,8 +127,18 @@ def _prescribed(t, dim, body_names):
             raise ConfigError(f"{t.key('velocity')}[{i}]", "expected a number or \"free\"")
     start = t.number("start", 0.0, min=0.0)
     until = t.number("until", math.inf, min=0.0) if t.has("until") else math.inf
+    mirror = None
+    if t.has("mirror"):
+        mirror = t.string("mirror", choices=FACES[: 2 * dim])
+        if any(c != 0.0 for c in vel) or start > 0.0 or until < math.inf:
+            raise ConfigError(t.key("mirror"), "a mirror clamp holds its particles at rest "
+                              "for the whole run: velocity all 0, no start or until")
+        if not math.isfinite((region.hi if mirror[1] == "+" else region.lo)["xyz".index(
+                mirror[0])]):
+            raise ConfigError(t.key("mirror"), "the clamp face needs a box (it lies on the "
+                              "box's face)")
     t.finish()
-    return PrescribedSpec(body, region, tuple(vel), start, until, t.path)
+    return PrescribedSpec(body, region, tuple(vel), start, until, t.path, mirror)
 
 
 def _damping(t, dim):

@@ -25,7 +25,7 @@ from pmpmsph.parallel.distributor import Distributor
 LENGTH, THICK = 1.0, 0.1
 
 
-def cantilever(through, force=None, end=0.6):
+def cantilever(through, force=None, end=0.6, mirror=False):
     dp = THICK / through
     sph = dict(formulation="total", h_factor=1.4, integrator="rk3")
     if force is not None:
@@ -36,7 +36,8 @@ def cantilever(through, force=None, end=0.6):
     sc.body(name="plate", method="sph", material="rubber", shape="box", min=[-0.1, 0],
             max=[LENGTH, THICK], spacing=dp)
     sc.data.setdefault("prescribed", []).append(
-        dict(body="plate", box=dict(min=[-0.2, -0.1], max=[0, 0.2]), velocity=[0.0, 0.0]))
+        dict(body="plate", box=dict(min=[-0.2, -0.1], max=[0, 0.2]), velocity=[0.0, 0.0],
+             **({"mirror": "x+"} if mirror else {})))
     sim = sc.simulation(dist=Distributor(MPI.COMM_SELF))
     x = sim.particles["x"]
     sim.particles["v"][:, 1] = np.where(x[:, 0] > 0, 0.5 * (x[:, 0] / LENGTH) ** 2, 0.0)

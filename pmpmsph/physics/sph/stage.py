@@ -306,6 +306,11 @@ class SPHStage:
             with self.timers.phase("halo"):
                 self.halo.refresh(("B",))
 
+    def set_constraint(self, prescribed):
+        """Hold the prescribed velocities (physics/loads.py PrescribedVelocity) within each
+        step too: every evaluation zeroes their components of the acceleration."""
+        self.constraint = prescribed
+
     def _hourglass_fit(self):
         """The fitted deformation gradient Fh of the owned solid rows, refreshed in the halo
         (the hourglass force needs it at both ends of a pair). No-op without the option."""

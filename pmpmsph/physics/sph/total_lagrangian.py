@@ -29,6 +29,7 @@ from ...kernels.sph.tlsph import (deformation_gradient, first_piola, internal_fo
 from ...parallel.particle_halo import ParticleHalo
 from ...particles import FieldSpec
 from ..scratch import rows_at_least
+from .mirror_clamp import MirrorClamps
 from .stage import HALO_MARGIN, SPHStage
 
 
@@ -75,7 +76,17 @@ class TLSPHStage(SPHStage):
         self.tl_materials = np.array(sorted({names.index(b.material) for b in case.bodies
                                              if b.method == "sph" and not b.wall}), np.int64)
         self.others = None  # mask of the rows of other materials (None: there are none)
+        self.mirror = (MirrorClamps(case, particles, dist, self.h)
+                       if any(s.mirror for s in case.prescribed) else None)
+        self._mirror = None  # the clamps of the evaluation under way
         self.want_L = True  # F is integrated (eq. 9) or recomputed: advance it in any case
+
+    def set_constraint(self, prescribed):
+        """As SPHStage's, and the mirror clamps matched to their partners (collective: a
+        clamp face off the particle layers is bad input, reported before step 1)."""
+        super().set_constraint(prescribed)
+        if self.mirror is not None:
+            self.mirror.setup()
 
     def set_decomposition(self, decomposition):
         self.dec = decomposition
@@ -166,17 +177,24 @@ class TLSPHStage(SPHStage):
         The rows of other materials (the points of an MPM fluid in a coupled scene) keep
         their own F, L, stress, volume, density and material state."""
         p = self.p
+        # the clamps' ghosts at the image of the free body (not in the kernels' warm-up on
+        # zero rows, which runs on one rank at a time: the clamps' set-up is collective)
+        self._mirror = self.mirror if self.halo_enabled else None
+        if self._mirror is not None:
+            self._mirror.place()
         self._exchange()
         self._reference()
         if self.others is None:
             self._evaluate(dt_state)
-            return
-        others = self.others
-        names = self.WRITTEN + (("mstate",) if "mstate" in p else ())
-        kept = {name: p.with_halo(name)[others] for name in names}
-        self._evaluate(dt_state)
-        for name, rows in kept.items():
-            p.with_halo(name)[others] = rows
+        else:
+            others = self.others
+            names = self.WRITTEN + (("mstate",) if "mstate" in p else ())
+            kept = {name: p.with_halo(name)[others] for name in names}
+            self._evaluate(dt_state)
+            for name, rows in kept.items():
+                p.with_halo(name)[others] = rows
+        if self._mirror is not None:
+            self._mirror.restore()
 
     def _evaluate(self, dt_state):
         p, t = self.p, self.timers
@@ -210,16 +228,24 @@ class TLSPHStage(SPHStage):
             sph_stress_all(nt, p.with_halo("mat"), F, p.with_halo("L"), dt_state, mstate,
                            self.mtypes, self.mparams, p.with_halo("sigma"))
             f = p.with_halo("force")
+            held = self._mirror.held_rows() if self._mirror is not None else None
             if self.current_force:
-                internal_force(start, index, gw, vol, p.with_halo("sigma"), self.dim, f)
+                sigma = p.with_halo("sigma")
+                if held is not None:  # a mirror clamp's stress is left out
+                    sigma = np.where(held[:, None, None], 0.0, sigma)
+                internal_force(start, index, gw, vol, sigma, self.dim, f)
             else:
                 P = np.empty((nt, 3, 3))
                 first_piola(F, p.with_halo("sigma"), P)
+                if held is not None:
+                    P[held] = 0.0
                 internal_force(start0, index0, gw0, vol0, P, self.dim, f)
             acc = p["acc"]
             acc[:] = f[:n] / p["mass"][:, None] + self.gravity[: self.dim]
         if self.hourglass > 0.0:
             self._hourglass(acc)
+        if self._mirror is not None:  # the ghosts' forces to their partners
+            self._mirror.hand_back(acc, self.gravity[: self.dim])
         with t.phase("sph"):
             if self.spec.damping:
                 acc -= self.spec.damping * p["v"]
