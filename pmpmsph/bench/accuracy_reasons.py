@@ -92,10 +92,9 @@ REASONS = [
      "kernel is truncated at the free corner where the error is taken)"),
     ("plate_fsi", r"TL-SPH plate", "until 2026-11-26 the total-Lagrangian stage rewrote "
      "the MPM water's F and stress at every evaluation and the plate fell through; since "
-     "then it converges at first order (hourglass 0.1: +17.5, +8.7, +4.7 % at 2, 4, 8 "
-     "particles through the thickness), soft at the clamps: a first-order excess "
-     "compliance at the clamp's edge, not the odd-even mode (a control exact for bending "
-     "barely moves it; docs/plate.md)"),
+     "then its plain clamps made it soft by about one smoothing length of span (+17.5, "
+     "+8.7, +4.7 % at 2, 4, 8 particles through the thickness with hourglass 0.1); with "
+     "mirror clamps and no control +12.7, +6.7, +2.0 % (docs/plate.md)"),
     ("plate_fsi", r"SPH UL plate", "the updated-Lagrangian plate (corrected kernel, "
      "hourglass control 2) does not hold a static bending load at 2 or 4 particles through "
      "the thickness: at 4 it sags to three times the beam's deflection and is still moving "
