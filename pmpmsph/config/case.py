@@ -83,6 +83,7 @@ class SPHSpec:
                                        # (eqs. 1-3; default on); updated, the gradient
                                        # correction of Bonet & Lok (kernels/sph/rates.py
                                        # `correction_matrices`; default off, load.py)
+    correction_kind: str = "liu"       # "liu" (kernels/sph/liu.py) | "bonet_lok" (updated)
     deformation: str = "reference"     # total: F by eq. 8 (reference) or eq. 9 (rate)
     force: str = "reference"           # total: eq. 5 in the reference configuration with
                                        # P = J sigma F^-T (stable in bending), or in the

@@ -130,6 +130,23 @@ def _body_spacing(body, grid=None):
     return min((hi - lo) / c for lo, hi, c in zip(g.lo, g.hi, body.count))
 
 
+def _correction(t, formulation):
+    """[sph] correction: false, true (the formulation's own: Liu's corrected kernel in the
+    total one, Bonet & Lok's gradient correction in the updated one), or the kind by name,
+    "liu" or "bonet_lok" (updated only). Liu's reads a bending strain rate across a few
+    particle rows exactly where Bonet & Lok's reads a third of it at 2 rows (docs/plate.md).
+    Returns (on, kind)."""
+    raw = t.raw("correction", formulation == "total")
+    default = "liu" if formulation == "total" else "bonet_lok"
+    if isinstance(raw, bool):
+        return raw, default
+    if raw == "liu" or (raw == "bonet_lok" and formulation == "updated"):
+        return True, raw
+    kinds = '"liu"' if formulation == "total" else '"liu" or "bonet_lok"'
+    raise ConfigError(t.key("correction"), f"expected true, false or {kinds} (the "
+                      f"{formulation} formulation)")
+
+
 def _hourglass(t, formulation, integrator):
     """[sph] hourglass: the factor kappa of the hourglass control; in the updated formulation
     with the Verlet integrator, whose drifts carry the control's displacements (the total
@@ -180,13 +197,14 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         if b.wall and not materials[b.material].fluid:
             raise ConfigError(f"bodies[{i}].material", "wall particles take a fluid "
                               "material (their density follows the extrapolated pressure)")
+    correction, correction_kind = _correction(t, formulation)
     spec = SPHSpec(
         kernel=kernel, h=h, spacing=spacing,
         formulation=formulation,
         # kernel correction: Liu's full correction in the total formulation (seed 004 eqs.
         # 1-3, on by default), the gradient correction of Bonet & Lok in the updated one
         # (kernels/sph/rates.py `correction_matrices`, off by default)
-        correction=t.boolean("correction", formulation == "total"),
+        correction=correction, correction_kind=correction_kind,
         deformation=t.string("deformation", "reference", choices=("reference", "rate")),
         # total: eq. 5 in the reference configuration (P = J sigma F^-T, the exact adjoint
         # of F by eq. 8: energy-consistent, stable in bending) by default; "current" is the

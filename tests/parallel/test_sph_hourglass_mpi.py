@@ -80,3 +80,16 @@ def test_total_lagrangian_hourglass_plate_equals_one_rank():
     difference = gathered(dist, sim, ("sigma",))["sigma"] - p["sigma"][np.argsort(p["gid"])]
     assert np.abs(difference).max() < 1e-12 * modulus
     assert _velocity_change(ref, off) > 0.01
+
+
+def _liu_plate(kappa=2.0):
+    """The updated plate with Liu's corrected kernel (`correction = "liu"`): its per-row
+    coefficients are refreshed in the halo, the pair gradients formed at both ends."""
+    sc = _plate(kappa)
+    sc.data["sph"]["correction"] = "liu"
+    return sc
+
+
+def test_liu_corrected_plate_equals_one_rank():
+    dist, sim, ref, _ = _runs(_liu_plate, 200)
+    assert_equals_one_rank(dist, sim, ref, FIELDS)

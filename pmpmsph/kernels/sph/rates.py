@@ -22,6 +22,7 @@ from ...materials.dispatch import compute_stress, wave_speed
 from ...materials.fluid import TAIT_FLUID, stress_tait_of_jm1
 from ...materials.tensor import det3
 from .kernel_functions import kernel_dwdr, kernel_w
+from .liu import COEF, liu_gradient
 
 
 
@@ -137,7 +138,7 @@ def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
 def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
               start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
               acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None,
-              dcoef=None, gradrho=None, morris_mu=None, split=False, pw=None):
+              dcoef=None, gradrho=None, morris_mu=None, split=False, pw=None, liu=None):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
@@ -222,6 +223,11 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     the truncated-kernel error of the stress and velocity gradient at a free surface
     (seed 004 §2.1; measured on scene 11: the surface row's velocity gradient of the exact
     Kirsch field is 23 % short plain, 5 % corrected).
+    With `liu` (the rows' coefficients of kernels/sph/liu.py, `correction = "liu"`) a pair
+    of one material takes Liu's corrected gradients instead, G_ab at the a end and -G_ba at
+    the b end in place of B_a g and B_b g (a row without coefficients keeps the plain g):
+    the same forms, so the force stays the adjoint of L; it reads a bending strain rate
+    across a few particle rows, where B's linear fit averages the rows' slopes.
 
     With `dcoef` (delta h c0 per material, 0 where a material does not diffuse) and the
     renormalised density gradients `gradrho` of `kernels.sph.density.density_gradient`, the
@@ -246,6 +252,11 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     corr = len(corr_tag) > 0
+    if liu is None:  # (Bonet-Lok's B, or no correction)
+        liu = np.zeros((0, COEF))
+    use_liu = liu.shape[0] > 0
+    rv = np.zeros(3)
+    gv = np.zeros(3)
     eps2 = 0.01 * h * h
     h4 = 4.0 * h * h
     if fcpl is None:  # (not coupled, or the seed's interface)
@@ -331,7 +342,18 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
             g2 = fr * xab2
             # the gradients used at the a end (ca = B_a g) and at the b end (cb = B_b g)
             ca0, ca1, ca2, cb0, cb1, cb2 = g0, g1, g2, g0, g1, g2
-            if corr:
+            if use_liu:  # Liu's gradients of a same-material pair: G_ab and -G_ba
+                if mat[a] == mat[b]:
+                    w = kernel_w(kern, dim, r, h)
+                    if liu[a, 0] != 0.0:
+                        rv[0], rv[1], rv[2] = xab0, xab1, xab2
+                        liu_gradient(dim, liu[a], rv, w, fr, gv)
+                        ca0, ca1, ca2 = gv[0], gv[1], gv[2]
+                    if liu[b, 0] != 0.0:
+                        rv[0], rv[1], rv[2] = -xab0, -xab1, -xab2
+                        liu_gradient(dim, liu[b], rv, w, fr, gv)
+                        cb0, cb1, cb2 = -gv[0], -gv[1], -gv[2]
+            elif corr:
                 ca0 = B[a, 0, 0] * g0
                 cb0 = B[b, 0, 0] * g0
                 if dim > 1:

@@ -82,14 +82,13 @@ import numpy as np
 
 from ...jit import njit
 from ...materials.dispatch import compute_stress, strain_energy
-from ...materials.tensor import block_inverse, cofactor3, det3
+from ...materials.tensor import cofactor3, det3
 from .kernel_functions import kernel_dwdr, kernel_w
+from .liu import COEF, liu_gradient, liu_solve
 
 __all__ = ["kernel_correction", "velocity_gradient", "deformation_gradient", "internal_force",
            "first_piola", "expm3", "update_F_exp", "material_stress", "current_volume", "energies"]
 
-#: M (eq. 2) is treated as singular when det(M) < DEGENERATE * (tr M / dim)^dim
-DEGENERATE = 1e-10
 
 
 @njit(inline="always")
@@ -120,20 +119,16 @@ def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
         M d_j beta = -d_j m1 - (d_j M) beta,  d_j alpha = -alpha^2 d_j(m0 + beta . m1).
 
     ``corrected=False`` gives the plain kernel and its gradient W'(r) r_b / r. A row whose
-    M is singular (all neighbours on a line/plane, see DEGENERATE) falls back to the
+    M is singular (all neighbours on a line/plane, see liu.DEGENERATE) falls back to the
     Shepard kernel W_b / m0 (exact for constants only); the number of such rows is returned.
     """
     n_rows = start.shape[0] - 1
     M = np.zeros((3, 3))
-    Minv = np.zeros((3, 3))
     m1 = np.zeros(3)
     g0 = np.zeros(3)
     D1 = np.zeros((3, 3))       # D1[i, j] = d m1_i / d x_j
     D2 = np.zeros((3, 3, 3))    # D2[i, k, j] = d M_ik / d x_j
-    beta = np.zeros(3)
-    dbeta = np.zeros((3, 3))    # dbeta[i, j] = d beta_i / d x_j
-    dalpha = np.zeros(3)
-    rhs = np.zeros(3)
+    coef = np.zeros(COEF)       # the row's alpha, beta and their gradients (liu.py)
     r = np.zeros(3)
     gW = np.zeros(3)
     n_bad = 0
@@ -174,63 +169,13 @@ def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
                     M[i, j] += w * r[i] * r[j]
                     for l in range(dim):
                         D2[i, j, l] += r[i] * r[j] * gW[l]
-        # the W-derivative parts: d m1_i/dx_j += m0 d_ij; d M_ik/dx_j += d_ij m1_k + d_kj m1_i
-        for i in range(dim):
-            D1[i, i] += m0
-            for kk in range(dim):
-                D2[i, kk, i] += m1[kk]
-                D2[i, kk, kk] += m1[i]
-        tr = 0.0
-        for i in range(dim):
-            tr += M[i, i] / dim
-        det = block_inverse(M, dim, Minv)
-        if not (det > DEGENERATE * tr ** dim) or not (m0 > 0.0):
+        if not liu_solve(dim, m0, g0, m1, M, D1, D2, coef):
             n_bad += 1
-            inv0 = 1.0 / m0
-            for k in range(k0, k1):
-                b = index[k]
-                w, dw = _pair_kernel(x, a, b, dim, kind, h, r)
-                wt[k] = w * inv0
-                for i in range(dim):
-                    gw[k, i] = (dw * r[i] - w * g0[i] * inv0) * inv0
-            continue
-        for i in range(dim):
-            s = 0.0
-            for j in range(dim):
-                s -= Minv[i, j] * m1[j]
-            beta[i] = s
-        A = m0
-        for i in range(dim):
-            A += beta[i] * m1[i]
-        alpha = 1.0 / A
-        for j in range(dim):
-            # M dbeta[:, j] = -D1[:, j] - D2[:, :, j] beta
-            for i in range(dim):
-                s = -D1[i, j]
-                for kk in range(dim):
-                    s -= D2[i, kk, j] * beta[kk]
-                rhs[i] = s
-            for i in range(dim):
-                s = 0.0
-                for kk in range(dim):
-                    s += Minv[i, kk] * rhs[kk]
-                dbeta[i, j] = s
-            dA = g0[j]
-            for i in range(dim):
-                dA += dbeta[i, j] * m1[i] + beta[i] * D1[i, j]
-            dalpha[j] = -alpha * alpha * dA
         for k in range(k0, k1):
-            b = index[k]
-            w, dw = _pair_kernel(x, a, b, dim, kind, h, r)
-            c = 1.0
+            w, dw = _pair_kernel(x, a, index[k], dim, kind, h, r)
+            wt[k] = liu_gradient(dim, coef, r, w, dw, gW)
             for i in range(dim):
-                c += beta[i] * r[i]
-            wt[k] = alpha * w * c
-            for j in range(dim):
-                s = beta[j]
-                for i in range(dim):
-                    s += dbeta[i, j] * r[i]
-                gw[k, j] = dalpha[j] * w * c + alpha * dw * r[j] * c + alpha * w * s
+                gw[k, i] = gW[i]
     return n_bad
 
 

@@ -22,6 +22,7 @@ force, refreshes it in the halo: the rates then use corrected gradients (see `sp
 """
 import numpy as np
 
+from ...codes import SPH
 from ...kernels.neighbours import moved_beyond, neighbour_lists
 from ...kernels.sph.rates import (
     pair_stress,
@@ -32,6 +33,7 @@ from ...kernels.sph.rates import (
 )
 from ...kernels.sph.artificial_stress import artificial_stress
 from ...kernels.sph.correction import correction_matrices
+from ...kernels.sph.liu import COEF, liu_coefficients
 from ...kernels.sph.density import density_gradient
 from ...kernels.sph.shifting import shift_positions, shifting_state
 from ...kernels.sph.hourglass import hourglass_fit, hourglass_forces
@@ -129,6 +131,9 @@ class SPHStage:
         # (the total formulation corrects its own kernel: TLSPHStage, kernel_correction)
         self.corr = bool(spec.correction) and spec.formulation == "updated"
         self.corr_tag = (0,) if self.corr else ()
+        # Liu's corrected kernel (`correction = "liu"`) instead of Bonet & Lok's matrices
+        self.liu = self.corr and spec.correction_kind == "liu"
+        self._sums = np.zeros((0, 52))
         # hourglass control of the solids (kernels/sph/hourglass.py; needs X0)
         self.hourglass = spec.hourglass if spec.formulation == "updated" else 0.0
         # per material: a fluid (Tait) meets a solid of another material through the mirror
@@ -178,7 +183,9 @@ class SPHStage:
             out.append(FieldSpec("pw", (), migrate=False, halo=True))
         if case.sph.artificial_stress > 0:
             out.append(FieldSpec("R", (6,), migrate=False))
-        if case.sph.correction:
+        if case.sph.correction and case.sph.correction_kind == "liu":
+            out.append(FieldSpec("liu", (COEF,), migrate=False))  # kernels/sph/liu.py
+        elif case.sph.correction:
             out.append(FieldSpec("B", (3, 3), migrate=False, fill="identity"))
         if diffusing_fluids(case) and case.sph.density_diffusion_model == "antuono":
             # delta-SPH: renormalised density gradients
@@ -240,7 +247,8 @@ class SPHStage:
                       0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
                       p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True,
                       np.zeros((0, self.dim)), False, self.corr_tag, self._B(), self.fluid,
-                      np.zeros((0, self.dim)), *self._diffusion(), split=self.split)
+                      np.zeros((0, self.dim)), *self._diffusion(), split=self.split,
+                      liu=self._liu())
 
     def _density_gradient(self):
         """delta-SPH: the renormalised density gradient of the owned fluid rows, refreshed in
@@ -287,7 +295,10 @@ class SPHStage:
         return self.dcoef, self.p.with_halo("gradrho")
 
     def _B(self):
-        return self.p.with_halo("B") if self.corr else np.zeros((0, 3, 3))
+        return self.p.with_halo("B") if self.corr and not self.liu else np.zeros((0, 3, 3))
+
+    def _liu(self):
+        return self.p.with_halo("liu") if self.liu else None
 
     def _correction(self, halo):
         """Kernel gradient correction B of the owned rows (and, with `halo`, refreshed in
@@ -296,6 +307,18 @@ class SPHStage:
             return
         p = self.p
         n = p.n_owned
+        if self.liu:
+            self._sums = rows_at_least(self._sums, n)
+            method = p.with_halo("method")
+            with self.timers.phase("sph"):
+                liu_coefficients(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+                                 p.with_halo("mass"), p.with_halo("rho"), method,
+                                 p.with_halo("mat"), method[:n] == SPH, self.start,
+                                 self.index, self._sums, p.with_halo("liu"))
+            if halo and self.halo_enabled:
+                with self.timers.phase("halo"):
+                    self.halo.refresh(("liu",))
+            return
         self._M = rows_at_least(self._M, n)
         with self.timers.phase("sph"):
             correction_matrices(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
@@ -407,7 +430,7 @@ class SPHStage:
                       "fsi" in p, self.corr_tag, self._B(), self.fluid,
                       p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)),
                       *self._diffusion(), self.morris_mu, self.split,
-                      p.with_halo("pw") if "pw" in p else None)
+                      p.with_halo("pw") if "pw" in p else None, self._liu())
             if self.hourglass > 0.0:
                 hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                                  p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),
