@@ -242,10 +242,9 @@ def case_from_dict(data, name="case", text=""):
     for ps in prescribed:
         body = bodies[names.index(ps.body)]
         if ps.mirror and (body.method != "sph" or body.wall or sph is None
-                          or sph.formulation != "total"):
-            raise ConfigError(f"{ps.key}.mirror", "a mirror clamp is for total-Lagrangian SPH "
-                              "solids ([sph] formulation = \"total\"); an MPM body is clamped "
-                              "by [[boundaries]] on the grid")
+                          or materials[body.material].fluid):
+            raise ConfigError(f"{ps.key}.mirror", "a mirror clamp is for SPH solids; an MPM "
+                              "body is clamped by [[boundaries]] on the grid")
     damping = tuple(_damping(dt, dim) for dt in root.subs("damping"))
     if damping and not any(materials[b.material].fluid for b in bodies):
         raise ConfigError(damping[0].key, "a damping zone acts on fluids and this scene has "

@@ -1,4 +1,5 @@
-"""Mirror clamps of total-Lagrangian SPH solids (`[[prescribed]] mirror = "x+"`, ...).
+"""Mirror clamps of SPH solids (`[[prescribed]] mirror = "x+"`, ...), total- and
+updated-Lagrangian.
 
 A clamp made of held particles (zero velocity) is first-order wrong at its edge: the free
 particles' kernel sums straddle the kink between the held, undisplaced material and the
@@ -20,7 +21,12 @@ the free particles' alone, E = sum over free a of V_a psi(F_a), with the ghost p
 functions of the free ones. So the forces are -dE/dx: the usual pair forces on the free
 particles, plus, for each partner, the force its ghost takes times the mirror's Jacobian
 dx_g / dx_p = -1. The forces stay conservative (with the hourglass control too, whose pair
-energy then includes the ghosts' pairs).
+energy then includes the ghosts' pairs). The updated formulation reads its strain rate from
+the velocities, so there the ghosts mirror them too, in the kinematics and in each
+evaluation; its stress is left out through S = sigma / rho^2. Limitation: in the updated
+formulation the force a ghost hands back is its whole pair force, so where an SPH fluid
+touches the clamp's ghosts (water over a clamped plate's edge) the fluid's push on them
+goes to their partners too; the total formulation's forces are the solid's alone.
 
 Partners are found once, in the reference configuration, by gid (the free particle of the
 same body within a quarter spacing of the image). A held particle within two smoothing
@@ -153,13 +159,15 @@ class MirrorClamps:
         left out of the forces)."""
         return np.isin(self.p.with_halo("gid"), self.held_gid)
 
-    def hand_back(self, acc, gravity):
-        """Each ghost's force (m (acc - g), before the clamp zeroes it) to its partner, with
-        the mirror's Jacobian -1 (collective)."""
+    def hand_back(self, acc, gravity, damping=0.0):
+        """Each ghost's force (m (acc - g + damping v): without its weight and its own
+        damping, before the clamp zeroes it) to its partner, with the mirror's Jacobian -1
+        (collective)."""
         p, n = self.p, self.p.n_owned
         grow = self._rows(self.ghost_gid, n)
         own = np.nonzero(grow >= 0)[0]
-        f = p["mass"][grow[own], None] * (acc[grow[own]] - gravity)
+        f = p["mass"][grow[own], None] * (acc[grow[own]] - gravity
+                                          + damping * p["v"][grow[own]])
         force = np.zeros((len(self.ghost_gid), acc.shape[1]))
         for k, fk in self.dist.allgather((own, f)):
             force[k] = fk

@@ -52,6 +52,7 @@ from ...particles import FieldSpec
 from ..hydrostatic import fluid_columns
 from ..scratch import rows_at_least
 from .integrators import SPH_INTEGRATORS
+from .mirror_clamp import MirrorClamps
 from ...timing import Timers
 
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
@@ -123,6 +124,11 @@ class SPHStage:
         self.halo = None
         # prescribed velocities (physics/loads.py PrescribedVelocity), held within a step
         self.constraint = None
+        # mirror clamps (physics/sph/mirror_clamp.py); `_mirror` is the evaluation's (None
+        # in the kernels' warm-up on zero rows, one rank at a time: the clamps are collective)
+        self.mirror = (MirrorClamps(case, particles, dist, case.sph.h)
+                       if any(s.mirror for s in case.prescribed) else None)
+        self._mirror = None
         self.set_decomposition(decomposition)
         self.use_as = spec.artificial_stress > 0.0
         self.w_dp = kernel_w(self.kern, self.dim, spec.spacing, self.h) if self.use_as else 1.0
@@ -193,6 +199,8 @@ class SPHStage:
         if shifting_fluids(case):  # particle shifting: grad C and the surface eigenvalue
             out += [FieldSpec("gradc", (3,), migrate=False), FieldSpec("lam", (), migrate=False),
                     FieldSpec("gradv", (3, 3), migrate=False)]
+        if any(s.mirror for s in case.prescribed) and case.sph.hourglass == 0.0:
+            out.append(FieldSpec("X0", ("dim",), halo=True, output=True))  # mirror clamps
         if case.sph.hourglass > 0.0:   # reference positions (set at seeding, initial_particles.py)
             out += [FieldSpec("X0", ("dim",), halo=True, output=True),
                     FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
@@ -228,6 +236,7 @@ class SPHStage:
         n = p.n_owned
         if "vg" in p:
             sync_ghost_velocity(n, p["method"], p["v"], p["vg"])
+        self._place_ghosts()
         # rows may have moved since the last evaluation (migration): rebuild the lists and
         # the halo if so (collectively), else refresh the halo in place
         self._update_neighbours()
@@ -249,6 +258,7 @@ class SPHStage:
                       np.zeros((0, self.dim)), False, self.corr_tag, self._B(), self.fluid,
                       np.zeros((0, self.dim)), *self._diffusion(), split=self.split,
                       liu=self._liu())
+        self._restore_ghosts()
 
     def _density_gradient(self):
         """delta-SPH: the renormalised density gradient of the owned fluid rows, refreshed in
@@ -331,8 +341,22 @@ class SPHStage:
 
     def set_constraint(self, prescribed):
         """Hold the prescribed velocities (physics/loads.py PrescribedVelocity) within each
-        step too: every evaluation zeroes their components of the acceleration."""
+        step too: every evaluation zeroes their components of the acceleration. The mirror
+        clamps are matched to their partners here (collective: a clamp face off the particle
+        layers is bad input, reported before step 1)."""
         self.constraint = prescribed
+        if self.mirror is not None:
+            self.mirror.setup()
+
+    def _place_ghosts(self):
+        """The clamps' ghosts at the image of the free body (before the halo refresh)."""
+        self._mirror = self.mirror if self.halo_enabled else None
+        if self._mirror is not None:
+            self._mirror.place()
+
+    def _restore_ghosts(self):
+        if self._mirror is not None:
+            self._mirror.restore()
 
     def _hourglass_fit(self):
         """The fitted deformation gradient Fh of the owned solid rows, refreshed in the halo
@@ -385,6 +409,7 @@ class SPHStage:
     def evaluate(self):
         """Rates (acc, drho, L) of owned SPH particles at the current state."""
         p, t = self.p, self.timers
+        self._place_ghosts()
         self._update_neighbours()
         n, nt = p.n_owned, p.n_total
         x = p.with_halo("x")
@@ -418,6 +443,11 @@ class SPHStage:
             R = p.with_halo("R") if self.use_as else np.zeros((0, 6))
             if self.use_as:
                 artificial_stress(self.dim, nt, sigma, rho, self.spec.artificial_stress, R)
+            if self._mirror is not None:  # the clamps' stress is left out
+                held = self._mirror.held_rows()
+                p.with_halo("S")[held] = 0.0
+                if self.use_as:
+                    R[held] = 0.0
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
             sph_rates(self.dim_tag, self.kern_tag, self.h, n, x, p.with_halo("v"), vg,
                       p.with_halo("mass"), rho, p.with_halo("S"), p.with_halo("cs"),
@@ -437,8 +467,11 @@ class SPHStage:
                                  rho, p.with_halo("cs"), p.with_halo("method"),
                                  p.with_halo("mat"), self.fluid, self.start, self.index,
                                  self.hourglass, p.with_halo("acc"))
+        if self._mirror is not None:  # the ghosts' forces to their partners
+            self._mirror.hand_back(p["acc"], self.gravity[: self.dim], self.spec.damping)
         if self.constraint is not None:
             self.constraint.hold(p["acc"])
+        self._restore_ghosts()
         self.evaluated = True
         self.evaluations += 1
 

@@ -29,7 +29,6 @@ from ...kernels.sph.tlsph import (deformation_gradient, first_piola, internal_fo
 from ...parallel.particle_halo import ParticleHalo
 from ...particles import FieldSpec
 from ..scratch import rows_at_least
-from .mirror_clamp import MirrorClamps
 from .stage import HALO_MARGIN, SPHStage
 
 
@@ -76,17 +75,7 @@ class TLSPHStage(SPHStage):
         self.tl_materials = np.array(sorted({names.index(b.material) for b in case.bodies
                                              if b.method == "sph" and not b.wall}), np.int64)
         self.others = None  # mask of the rows of other materials (None: there are none)
-        self.mirror = (MirrorClamps(case, particles, dist, self.h)
-                       if any(s.mirror for s in case.prescribed) else None)
-        self._mirror = None  # the clamps of the evaluation under way
         self.want_L = True  # F is integrated (eq. 9) or recomputed: advance it in any case
-
-    def set_constraint(self, prescribed):
-        """As SPHStage's, and the mirror clamps matched to their partners (collective: a
-        clamp face off the particle layers is bad input, reported before step 1)."""
-        super().set_constraint(prescribed)
-        if self.mirror is not None:
-            self.mirror.setup()
 
     def set_decomposition(self, decomposition):
         self.dec = decomposition
@@ -177,11 +166,7 @@ class TLSPHStage(SPHStage):
         The rows of other materials (the points of an MPM fluid in a coupled scene) keep
         their own F, L, stress, volume, density and material state."""
         p = self.p
-        # the clamps' ghosts at the image of the free body (not in the kernels' warm-up on
-        # zero rows, which runs on one rank at a time: the clamps' set-up is collective)
-        self._mirror = self.mirror if self.halo_enabled else None
-        if self._mirror is not None:
-            self._mirror.place()
+        self._place_ghosts()
         self._exchange()
         self._reference()
         if self.others is None:
@@ -193,8 +178,7 @@ class TLSPHStage(SPHStage):
             self._evaluate(dt_state)
             for name, rows in kept.items():
                 p.with_halo(name)[others] = rows
-        if self._mirror is not None:
-            self._mirror.restore()
+        self._restore_ghosts()
 
     def _evaluate(self, dt_state):
         p, t = self.p, self.timers
