@@ -78,7 +78,7 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
                    damping=damping, hydrostatic=True, viscosity=dict(alpha=0.1, beta=0.0))
         if plate_method == "sph":  # an updated-Lagrangian plate beside the water: Liu's
             # corrected kernel (Bonet-Lok's reads a third of the bending at 2 through,
-            # docs/plate.md) and mirror clamps; no hourglass control
+            # docs/plate.md), plain clamps; no hourglass control
             sph.update(correction="liu", integrator="verlet", hourglass=hourglass)
     else:  # a total-Lagrangian SPH plate (the formulation that bends well, BENCHMARKS 12)
         sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping,
@@ -119,7 +119,8 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
         for lo, hi, face in ((-clamp - sp, 0.0, "x+"), (span, span + clamp + sp, "x-")):
             held = dict(body="plate", box=dict(min=[lo, -sp], max=[hi, thickness + sp]),
                         velocity=[0.0, 0.0])
-            held["mirror"] = face  # (physics/sph/mirror_clamp.py)
+            if fluid_method == "mpm":  # (physics/sph/mirror_clamp.py: not yet beside SPH
+                held["mirror"] = face  # water in the updated formulation)
             sc.data.setdefault("prescribed", []).append(held)
     if plate_method == "sph" and fluid_method == "mpm":  # slip grid walls for the water
         for lo, hi, nx_ in ((x0 - cell, eps, -1.0), (span - eps, x0 + (nx + 1) * cell, 1.0)):
