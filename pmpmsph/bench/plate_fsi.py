@@ -78,8 +78,8 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
                    damping=damping, hydrostatic=True, viscosity=dict(alpha=0.1, beta=0.0))
         if plate_method == "sph":  # an updated-Lagrangian plate beside the water: the
             # corrected kernel and the hourglass control of the plate with a hole (scene 11).
-            # With Liu's gradient and no control it reads bending right but inverts at
-            # spacing 0.005 (docs/plate.md), so the map keeps this one
+            # With Liu's gradient it reads bending right but comes out far too stiff under
+            # the SPH water (docs/plate.md), so the map keeps this one
             sph.update(correction=True, hourglass=2.0, integrator="verlet")
     else:  # a total-Lagrangian SPH plate (the formulation that bends well, BENCHMARKS 12)
         sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping,
