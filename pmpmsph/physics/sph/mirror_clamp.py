@@ -57,7 +57,9 @@ class MirrorClamps:
         self.ghost_gid = None     # sorted
         self.partner_gid = None   # the partner of each ghost
         self.held_gid = None      # every held particle of a mirror clamp (stress left out)
-        self._saved = None
+        # of the evaluation under way (`place` to `restore`: no row moves in between): the
+        # owned rows of the ghosts and partners, the saved ghost state, the held-row mask
+        self._grow = self._prow = self._saved = self._held = None
 
     # -- set-up ---------------------------------------------------------------------------
     def _faces(self, spec):
@@ -111,23 +113,28 @@ class MirrorClamps:
         self.ghost_gid, self.partner_gid = g[order], q[order]
 
     # -- each evaluation ------------------------------------------------------------------
-    def _rows(self, gids, nrows):
-        """Owned rows of `gids` (-1 where not owned here)."""
-        out = np.full(len(gids), -1, np.int64)
-        if nrows == 0 or len(gids) == 0:
-            return out
-        gid = self.p["gid"][:nrows]
+    def _rows(self, *gid_lists):
+        """Owned rows of each list of gids (-1 where not owned here), one sort of the owned
+        gids for all."""
+        n = self.p.n_owned
+        gid = self.p["gid"][:n]
         order = np.argsort(gid)
-        rows = order[np.minimum(np.searchsorted(gid[order], gids), nrows - 1)]
-        hit = gid[rows] == gids
-        out[hit] = rows[hit]
+        out = []
+        for gids in gid_lists:
+            rows = np.full(len(gids), -1, np.int64)
+            if n and len(gids):
+                at = order[np.minimum(np.searchsorted(gid[order], gids), n - 1)]
+                hit = gid[at] == gids
+                rows[hit] = at[hit]
+            out.append(rows)
         return out
 
     def place(self):
         """Put the owned ghosts at the odd image of their partners (before the halo
         exchange); `restore` puts them back at rest."""
-        p, n = self.p, self.p.n_owned
-        prow = self._rows(self.partner_gid, n)
+        p = self.p
+        self._grow, self._prow = grow, prow = self._rows(self.ghost_gid, self.partner_gid)
+        self._held = None
         mine = prow >= 0
         X0, x, v = p["X0"], p["x"], p["v"]
         sent = (np.nonzero(mine)[0], x[prow[mine]] - X0[prow[mine]], v[prow[mine]])
@@ -135,7 +142,6 @@ class MirrorClamps:
         w = np.zeros_like(u)
         for k, du, dv in self.dist.allgather(sent):
             u[k], w[k] = du, dv
-        grow = self._rows(self.ghost_gid, n)
         own = grow >= 0
         rows = grow[own]
         self._saved = (rows, x[rows].copy(), v[rows].copy())
@@ -157,21 +163,21 @@ class MirrorClamps:
 
     def held_rows(self):
         """Mask over the rows with halo: the held particles of the clamps (their stress is
-        left out of the forces)."""
-        return np.isin(self.p.with_halo("gid"), self.held_gid)
+        left out of the forces); once per evaluation, after its halo exchange."""
+        if self._held is None or len(self._held) != self.p.n_total:
+            self._held = np.isin(self.p.with_halo("gid"), self.held_gid)
+        return self._held
 
     def hand_back(self, acc, gravity, damping=0.0):
         """Each ghost's force (m (acc - g + damping v): without its weight and its own
         damping, before the clamp zeroes it) to its partner, with the mirror's Jacobian -1
         (collective)."""
-        p, n = self.p, self.p.n_owned
-        grow = self._rows(self.ghost_gid, n)
+        p, grow, prow = self.p, self._grow, self._prow
         own = np.nonzero(grow >= 0)[0]
         f = p["mass"][grow[own], None] * (acc[grow[own]] - gravity
                                           + damping * p["v"][grow[own]])
         force = np.zeros((len(self.ghost_gid), acc.shape[1]))
         for k, fk in self.dist.allgather((own, f)):
             force[k] = fk
-        prow = self._rows(self.partner_gid, n)
         mine = np.nonzero(prow >= 0)[0]  # in ghost-gid order: the same sums on any ranks
         np.subtract.at(acc, prow[mine], force[mine] / p["mass"][prow[mine], None])

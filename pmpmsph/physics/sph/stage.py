@@ -199,11 +199,12 @@ class SPHStage:
         if shifting_fluids(case):  # particle shifting: grad C and the surface eigenvalue
             out += [FieldSpec("gradc", (3,), migrate=False), FieldSpec("lam", (), migrate=False),
                     FieldSpec("gradv", (3, 3), migrate=False)]
-        if any(s.mirror for s in case.prescribed) and case.sph.hourglass == 0.0:
-            out.append(FieldSpec("X0", ("dim",), halo=True, output=True))  # mirror clamps
-        if case.sph.hourglass > 0.0:   # reference positions (set at seeding, initial_particles.py)
-            out += [FieldSpec("X0", ("dim",), halo=True, output=True),
-                    FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
+        if case.sph.hourglass > 0.0 or any(s.mirror for s in case.prescribed):
+            # reference positions (set at seeding, initial_particles.py): the hourglass
+            # control's and the mirror clamps' (physics/sph/mirror_clamp.py)
+            out.append(FieldSpec("X0", ("dim",), halo=True, output=True))
+        if case.sph.hourglass > 0.0:
+            out += [FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
                     FieldSpec("Fh", (3, 3), migrate=False, halo=True)]
         if multi:
             out += [FieldSpec("x_n", ("dim",), migrate=False),
