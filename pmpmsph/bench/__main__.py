@@ -83,9 +83,9 @@ def main(argv: "list[str] | None" = None) -> None:
                     help="plate / water: MPM / SPH, MPM / MPM, TL-SPH / MPM, UL-SPH / SPH")
     pl.add_argument("--spacing", type=float, nargs="+", default=[0.01, 0.005, 0.0025])
     pl.add_argument("--end", type=float, default=0.5)
-    pl.add_argument("--hourglass", type=float, default=0.0,
-                    help="the TL-SPH plate's [sph] hourglass (sph_plate; default 0: off, its "
-                    "mirror clamps need none)")
+    pl.add_argument("--hourglass", type=float, default=None,
+                    help="the SPH plate's [sph] hourglass (default: 0 for the TL-SPH plate, "
+                    "whose mirror clamps need none; 2, quadratic fit, for the UL-SPH plate)")
     pl.add_argument("--out", default="bench_results")
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "io-worker":

@@ -13,7 +13,7 @@ END, WINDOW = 0.5, 0.1
 
 def run_plate(dist, m, spacing, quick):
     sc, ref = water_on_plate(m["combo"], spacing=spacing, end=END,
-                             hourglass=m.get("hourglass", 0.0))
+                             hourglass=m.get("hourglass"))
     sim = sc.simulation(dist=dist)
     body = [b.name for b in sim.case.bodies].index("plate")
     y0 = start_heights(sim)
@@ -41,8 +41,8 @@ PLATE_FSI = dict(
                   combo="sph_plate"),  # mirror clamps, no hourglass control
              dict(label="MPM plate / MPM water (contact)", family="MPM", combo="mpm_mpm",
                   quick=True),
-             # the UL-SPH plate runs 5x slower per particle (Verlet, correction, hourglass):
-             # its finest level would take most of an hour
+             # the UL-SPH plate (Liu's kernel, mirror clamps, quadratic hourglass control)
+             # runs 5x slower per particle: its finest level would take most of an hour
              dict(label="SPH UL plate / SPH water", family="SPH UL", combo="sph_sph",
                   levels={"full": [0.01, 0.005], "quick": [0.01]})],
     levels={"full": [0.01, 0.005, 0.0025], "quick": [0.01]}, knob_of=lambda sp: sp,

@@ -95,10 +95,11 @@ REASONS = [
      "then its plain clamps made it soft by about one smoothing length of span (+17.5, "
      "+8.7, +4.7 % at 2, 4, 8 particles through the thickness with hourglass 0.1); with "
      "mirror clamps and no control +12.7, +6.7, +2.0 % (docs/plate.md)"),
-    ("plate_fsi", r"SPH UL plate", "the updated-Lagrangian plate (corrected kernel, "
-     "hourglass control 2) does not hold a static bending load at 2 or 4 particles through "
-     "the thickness: at 4 it sags to three times the beam's deflection and is still moving "
-     "at 0.5 s (12.0 mm at 0.32 s, 9.8 at 0.4); at 2 it folds (error 7.4)"),
+    ("plate_fsi", r"SPH UL plate", "until 2026-11-26 the updated-Lagrangian plate "
+     "(Bonet-Lok's gradient, linear-fit hourglass control 2) did not hold a static bending "
+     "load at 2 or 4 particles through the thickness (at 4 three times the beam's "
+     "deflection, at 2 it folded); since then it runs with Liu's kernel, mirror clamps and "
+     "the quadratic-fit control, which leaves bending alone (docs/plate.md)"),
     ("couette", r"SPH UL", "the error is the start-up's (t = 0.1: -1.2, -1.0, -0.9 % of U "
      "in the interior at 20, 40, 80 across; steady 0.04 %): the flow lags because the "
      "Morris operator on a square lattice at a fixed h = 1.3 spacings is short of the "

@@ -54,9 +54,11 @@ def plate_modulus(span, thickness, q, nu, ratio=0.01):
 
 def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, depth=0.1,
                    rho_plate=7800.0, nu=0.3, damping=40.0, end=0.6, clamp_cells=2,
-                   hourglass=0.0):
-    """The scene, and the reference dict (q, E, w_bending, w_shear). `hourglass`: the
-    total-Lagrangian plate's `[sph] hourglass` (sph_plate only)."""
+                   hourglass=None):
+    """The scene, and the reference dict (q, E, w_bending, w_shear). `hourglass`: the SPH
+    plate's `[sph] hourglass` (None: 0 for the total-Lagrangian plate, which needs none with
+    mirror clamps, 2 with the quadratic fit for the updated one, whose columns pair up
+    under SPH water without it; docs/plate.md)."""
     sp = spacing
     cell = 2.0 * sp
     wall = 3 * sp
@@ -76,14 +78,14 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
     if fluid_method == "sph":
         sph = dict(h_factor=1.3, integrator="predictor_corrector", walls="slip",
                    damping=damping, hydrostatic=True, viscosity=dict(alpha=0.1, beta=0.0))
-        if plate_method == "sph":  # an updated-Lagrangian plate beside the water: the
-            # corrected kernel and the hourglass control of the plate with a hole (scene 11).
-            # With Liu's gradient it reads bending right but comes out far too stiff under
-            # the SPH water (docs/plate.md), so the map keeps this one
-            sph.update(correction=True, hourglass=2.0, integrator="verlet")
+        if plate_method == "sph":  # an updated-Lagrangian plate beside the water: Liu's
+            # corrected kernel (it reads bending, Bonet-Lok's does not), mirror clamps and the
+            # quadratic-fit hourglass control, which leaves bending alone (docs/plate.md)
+            sph.update(correction="liu", integrator="verlet", hourglass_fit="quadratic",
+                       hourglass=2.0 if hourglass is None else hourglass)
     else:  # a total-Lagrangian SPH plate (the formulation that bends well, BENCHMARKS 12)
         sph = dict(formulation="total", h_factor=1.4, integrator="rk3", damping=damping,
-                   hourglass=hourglass)
+                   hourglass=hourglass or 0.0)
         # water and plate each in their own velocity field, in frictionless contact (an
         # SPH solid takes part in P2G as a body of its own: physics/sph/solid_in_fluid.py)
         mpm.update(hydrostatic=True, velocity_update="apic", contact="multi")
@@ -119,9 +121,7 @@ def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, d
     if plate_method == "sph":
         for lo, hi, face in ((-clamp - sp, 0.0, "x+"), (span, span + clamp + sp, "x-")):
             held = dict(body="plate", box=dict(min=[lo, -sp], max=[hi, thickness + sp]),
-                        velocity=[0.0, 0.0])
-            if fluid_method == "mpm":  # (physics/sph/mirror_clamp.py: not yet beside SPH
-                held["mirror"] = face  # water in the updated formulation)
+                        velocity=[0.0, 0.0], mirror=face)  # physics/sph/mirror_clamp.py
             sc.data.setdefault("prescribed", []).append(held)
     if plate_method == "sph" and fluid_method == "mpm":  # slip grid walls for the water
         for lo, hi, nx_ in ((x0 - cell, eps, -1.0), (span - eps, x0 + (nx + 1) * cell, 1.0)):
@@ -193,8 +193,8 @@ def run(args):
     """`python -m pmpmsph.bench plate`: each spacing of each combination; a table and
     `<out>/plate.csv`."""
     rows = []
-    if "sph_plate" in args.combos:
-        print(f"(the TL-SPH plate with [sph] hourglass = {args.hourglass:g})")
+    if args.hourglass is not None:
+        print(f"(the SPH plate with [sph] hourglass = {args.hourglass:g})")
     print(f"{'combination':<12}{'spacing':>9}{'w (mm)':>9}{'EB (mm)':>9}{'error':>9}"
           f"{'Timosh.':>9}{'error':>9}{'spread':>8}{'wall s':>8}")
     for combo in args.combos:
@@ -202,7 +202,7 @@ def run(args):
             t0 = time.perf_counter()
             try:
                 t, w, ref = plate_run(combo, spacing=sp, end=args.end,
-                                      hourglass=args.hourglass if combo == "sph_plate" else 0.0)
+                                      hourglass=args.hourglass)
                 mean, spread = settled(t, w)
                 failure = ""
             except Exception as exc:  # a failed run is a row of the table, not the end

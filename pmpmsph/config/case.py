@@ -97,6 +97,8 @@ class SPHSpec:
     artificial_stress_exponent: float = 4.0
     hourglass: float = 0.0             # solids: hourglass control factor kappa
                                        # (kernels/sph/hourglass.py; 0: off)
+    hourglass_fit: str = "linear"      # its fit: "linear" or "quadratic"
+                                       # (kernels/sph/hourglass_quadratic.py)
     damping: float = 0.0               # alpha_d: a -= alpha_d v (as thesis eq. 76)
     density_diffusion: float = 0.1     # fluids: delta of delta-SPH (Antuono 2010; 0: off)
     density_diffusion_model: str = "fourtakas"  # the hydrostatic splitting of Fourtakas

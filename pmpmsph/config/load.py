@@ -245,13 +245,6 @@ def case_from_dict(data, name="case", text=""):
                           or materials[body.material].fluid):
             raise ConfigError(f"{ps.key}.mirror", "a mirror clamp is for SPH solids; an MPM "
                               "body is clamped by [[boundaries]] on the grid")
-        if ps.mirror and sph.formulation == "updated" and any(
-                b.method == "sph" and materials[b.material].fluid for b in bodies):
-            raise ConfigError(f"{ps.key}.mirror", "in the updated formulation a mirror clamp "
-                              "does not work beside an SPH fluid yet: a ghost hands its "
-                              "partner the fluid's push too (a plate under SPH water sank "
-                              "through 38 mm, physics/sph/mirror_clamp.py); use plain held "
-                              "particles, or the total formulation with MPM water")
     damping = tuple(_damping(dt, dim) for dt in root.subs("damping"))
     if damping and not any(materials[b.material].fluid for b in bodies):
         raise ConfigError(damping[0].key, "a damping zone acts on fluids and this scene has "

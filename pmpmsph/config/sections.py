@@ -8,6 +8,7 @@ import contextvars
 import math
 
 from ..errors import ConfigError
+from ..kernels.sph.hourglass_quadratic import HOURGLASS_FITS
 from ..physics.sph.integrators import SPH_INTEGRATORS as SPH_INTEGRATOR_CLASSES
 from ..scene.geometry import Box, Disc, Polygon
 from ..scene.mesh import MeshGeometry, mesh_geometry
@@ -147,6 +148,16 @@ def _correction(t, formulation):
                       f"{formulation} formulation)")
 
 
+def _hourglass_fit(t):
+    """[sph] hourglass_fit: the field the hourglass control fits (kernels/sph/
+    hourglass_quadratic.py); refused without the control, where it would do nothing."""
+    fit = t.string("hourglass_fit", "linear", choices=tuple(HOURGLASS_FITS))
+    if fit != "linear" and t.number("hourglass", 0.0, min=0.0) == 0.0:
+        raise ConfigError(t.key("hourglass_fit"), "the fit is the hourglass control's, and "
+                          "sph.hourglass is 0 (off)")
+    return fit
+
+
 def _hourglass(t, formulation, integrator):
     """[sph] hourglass: the factor kappa of the hourglass control; in the updated formulation
     with the Verlet integrator, whose drifts carry the control's displacements (the total
@@ -215,6 +226,8 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
         # the odd-even mode of the corrected solid (kernels/sph/hourglass.py), off by default
         hourglass=_hourglass(t, formulation, integrator),
+        # the field it fits: linear, or quadratic, which leaves bending alone
+        hourglass_fit=_hourglass_fit(t),
         damping=t.number("damping", 0.0, min=0.0),
         # delta of the delta-SPH density diffusion of fluids (kernels/sph/density.py);
         # 0.1 is Antuono et al.'s (2010) value, 0 switches it off

@@ -65,16 +65,42 @@ from .kernel_functions import kernel_dwdr
 
 
 @njit(inline="always")
-def _pair(dim, kern, h, X0, a, b):
-    """|X_b - X_a|^2 and phi = -W'(R)/R at R = |X_b - X_a| (0 outside the support)."""
+def pair_weight(dim, kern, h, X0, a, b):
+    """phi = -W'(R)/R at R = |X_b - X_a| (0 outside the support)."""
     R2 = 0.0
     for i in range(dim):
         d = X0[b, i] - X0[a, i]
         R2 += d * d
     if R2 >= 4.0 * h * h or R2 == 0.0:
-        return R2, 0.0
+        return 0.0
     R = np.sqrt(R2)
-    return R2, -kernel_dwdr(kern, dim, R, h) / R
+    return -kernel_dwdr(kern, dim, R, h) / R
+
+
+@njit
+def control_pairs(dim, kern, h, n_query, X0, method, mat, fluid, start, index):
+    """The pairs of the control over half neighbour lists, (a, b) rows and phi_ab: every
+    owned SPH row a of a solid with each neighbour b, an SPH row of a's material within the
+    support in the reference configuration."""
+    count = 0
+    for a in range(n_query):
+        if method[a] == SPH and not fluid[mat[a]]:
+            count += start[a + 1] - start[a]
+    rows = np.empty((count, 2), np.int64)
+    phi = np.empty(count)
+    m = 0
+    for a in range(n_query):
+        if method[a] != SPH or fluid[mat[a]]:
+            continue
+        for k in range(start[a], start[a + 1]):
+            b = index[k]
+            if method[b] != SPH or mat[b] != mat[a]:
+                continue
+            w = pair_weight(dim, kern, h, X0, a, b)
+            if w != 0.0:
+                rows[m, 0], rows[m, 1], phi[m] = a, b, w
+                m += 1
+    return rows[:m], phi[:m]
 
 
 @njit
@@ -87,35 +113,28 @@ def hourglass_fit(dim_tag, kern_tag, h, n_query, u, X0, mass, rho, method, mat, 
     Over half neighbour lists. A row whose A is (nearly) singular gets Fh = 0 (its pair
     terms are then skipped)."""
     dim = len(dim_tag)
-    kern = len(kern_tag) - 1
     for a in range(n_query):
         for i in range(3):
             for j in range(3):
                 A[a, i, j] = 0.0
                 Fh[a, i, j] = 0.0
-    for a in range(n_query):
-        if method[a] != SPH or fluid[mat[a]]:
-            continue
-        for k in range(start[a], start[a + 1]):
-            b = index[k]
-            if method[b] != SPH or mat[b] != mat[a]:
-                continue
-            _, phi = _pair(dim, kern, h, X0, a, b)
-            if phi == 0.0:
-                continue
-            wa = mass[b] / rho[b] * phi
-            wb = mass[a] / rho[a] * phi if b < n_query else 0.0
-            for i in range(dim):
-                xi = u[b, i] - u[a, i]
-                Xi = X0[b, i] - X0[a, i]
-                for j in range(dim):
-                    Xj = X0[b, j] - X0[a, j]
-                    # A in the upper-left block, C stored in Fh until the solve
-                    A[a, i, j] += wa * Xi * Xj
-                    Fh[a, i, j] += wa * xi * Xj
-                    if wb != 0.0:
-                        A[b, i, j] += wb * Xi * Xj
-                        Fh[b, i, j] += wb * xi * Xj
+    rows, phi = control_pairs(dim, len(kern_tag) - 1, h, n_query, X0, method, mat, fluid,
+                              start, index)
+    for m in range(len(phi)):
+        a, b = rows[m, 0], rows[m, 1]
+        wa = mass[b] / rho[b] * phi[m]
+        wb = mass[a] / rho[a] * phi[m] if b < n_query else 0.0
+        for i in range(dim):
+            xi = u[b, i] - u[a, i]
+            Xi = X0[b, i] - X0[a, i]
+            for j in range(dim):
+                Xj = X0[b, j] - X0[a, j]
+                # A in the upper-left block, C stored in Fh until the solve
+                A[a, i, j] += wa * Xi * Xj
+                Fh[a, i, j] += wa * xi * Xj
+                if wb != 0.0:
+                    A[b, i, j] += wb * Xi * Xj
+                    Fh[b, i, j] += wb * xi * Xj
     Ai = np.zeros((3, 3))
     C = np.zeros((3, 3))
     for a in range(n_query):
@@ -150,33 +169,28 @@ def hourglass_forces(dim_tag, kern_tag, h, n_query, u, X0, Fh, mass, rho, cs, me
     no force here, its owner adds it). Only pairs of two SPH rows of one solid material,
     both with a fit (Fh != 0; `hourglass_fit`, refreshed in the halo)."""
     dim = len(dim_tag)
-    kern = len(kern_tag) - 1
-    for a in range(n_query):
-        if method[a] != SPH or fluid[mat[a]] or Fh[a, 0, 0] == 0.0:
+    rows, phi = control_pairs(dim, len(kern_tag) - 1, h, n_query, X0, method, mat, fluid,
+                              start, index)
+    for m in range(len(phi)):
+        a, b = rows[m, 0], rows[m, 1]
+        if Fh[a, 0, 0] == 0.0 or Fh[b, 0, 0] == 0.0:
             continue
         Va = mass[a] / rho[a]
         Ma = rho[a] * cs[a] * cs[a]
-        for k in range(start[a], start[a + 1]):
-            b = index[k]
-            if method[b] != SPH or mat[b] != mat[a] or Fh[b, 0, 0] == 0.0:
-                continue
-            _, phi = _pair(dim, kern, h, X0, a, b)
-            if phi == 0.0:
-                continue
-            Vb = mass[b] / rho[b]
-            Mb = rho[b] * cs[b] * cs[b]
-            c = kappa * Va * Vb * phi
-            for i in range(dim):
-                pa = 0.0  # ((Fh_a - 1) X_ba)_i
-                pb = 0.0  # ((Fh_b - 1) X_ba)_i
-                for j in range(dim):
-                    dX = X0[b, j] - X0[a, j]
-                    one = 1.0 if i == j else 0.0
-                    pa += (Fh[a, i, j] - one) * dX
-                    pb += (Fh[b, i, j] - one) * dX
-                uba = u[b, i] - u[a, i]
-                # e_ab = u_ba - (Fh_a - 1) X_ba, e_ba = -u_ba + (Fh_b - 1) X_ba
-                f = c * (Ma * (uba - pa) - Mb * (pb - uba))
-                acc[a, i] += f / mass[a]
-                if b < n_query:
-                    acc[b, i] -= f / mass[b]
+        Vb = mass[b] / rho[b]
+        Mb = rho[b] * cs[b] * cs[b]
+        c = kappa * Va * Vb * phi[m]
+        for i in range(dim):
+            pa = 0.0  # ((Fh_a - 1) X_ba)_i
+            pb = 0.0  # ((Fh_b - 1) X_ba)_i
+            for j in range(dim):
+                dX = X0[b, j] - X0[a, j]
+                one = 1.0 if i == j else 0.0
+                pa += (Fh[a, i, j] - one) * dX
+                pb += (Fh[b, i, j] - one) * dX
+            uba = u[b, i] - u[a, i]
+            # e_ab = u_ba - (Fh_a - 1) X_ba, e_ba = -u_ba + (Fh_b - 1) X_ba
+            f = c * (Ma * (uba - pa) - Mb * (pb - uba))
+            acc[a, i] += f / mass[a]
+            if b < n_query:
+                acc[b, i] -= f / mass[b]

@@ -138,7 +138,8 @@ def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
 def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
               start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
               acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None,
-              dcoef=None, gradrho=None, morris_mu=None, split=False, pw=None, liu=None):
+              dcoef=None, gradrho=None, morris_mu=None, split=False, pw=None, liu=None,
+              clamped=None):
     """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
@@ -201,6 +202,12 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     the reaction of the pair force, fsi_b = -m_a m_b (pair term) (force units): the SPH
     particle pushes the MPM body as much as it is pushed (momentum is exchanged, not made),
     applied by the caller as an external force in the next P2G.
+
+    With a non-empty `clamped` (a mask over the rows: the held particles of mirror clamps,
+    physics/sph/mirror_clamp.py) a clamped row takes no force from pairs with another
+    material (a fluid, a dummy wall): its clamp holds it against them. Such a row is a
+    ghost whose force is handed to its partner as the solid's energy gradient, and the
+    water's push on the clamp is no part of that (with it a plate under SPH water sank).
 
     With a non-empty `fcpl` (the conservative MPM-SPH coupling, `physics.coupling`), a pair
     of one SPH and one MPM point of the same material is one-sided: only the SPH end's
@@ -279,6 +286,9 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     if pw is None:  # (the plain mirror: the solid point carries the fluid's own pressure)
         pw = np.zeros(0)
     with_pw = pw.shape[0] > 0
+    if clamped is None:  # (no mirror clamp of an updated solid)
+        clamped = np.zeros(0, np.bool_)
+    with_clamped = clamped.shape[0] > 0
     if morris_mu is None:  # (no pairwise viscosity)
         morris_mu = np.zeros(0)
     pairwise = morris_mu.shape[0] > 0
@@ -528,13 +538,16 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
                     f1 += S[a, 4] * ca2 + S[b, 4] * cb2
                     f2 += (S[a, 5] * ca0 + S[a, 4] * ca1 + S[a, 2] * ca2
                            + S[b, 5] * cb0 + S[b, 4] * cb1 + S[b, 2] * cb2)
-            if upd_a:
+            # a clamped row's pushes from other materials go to its clamp (docstring)
+            force_a = upd_a and not (with_clamped and clamped[a] and mat[a] != mat[b])
+            force_b = upd_b and not (with_clamped and clamped[b] and mat[a] != mat[b])
+            if force_a:
                 acc[a, 0] += mb * f0
                 if dim > 1:
                     acc[a, 1] += mb * f1
                 if dim > 2:
                     acc[a, 2] += mb * f2
-            if upd_b:
+            if force_b:
                 acc[b, 0] -= ma * f0
                 if dim > 1:
                     acc[b, 1] -= ma * f1

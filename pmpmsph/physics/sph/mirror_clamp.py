@@ -23,11 +23,13 @@ particles, plus, for each partner, the force its ghost takes times the mirror's 
 dx_g / dx_p = -1. The forces stay conservative (with the hourglass control too, whose pair
 energy then includes the ghosts' pairs). The updated formulation reads its strain rate from
 the velocities, so there the ghosts mirror them too, in the kinematics and in each
-evaluation; its stress is left out through S = sigma / rho^2. Limitation: in the updated
-formulation the force a ghost hands back is its whole pair force, fluid pairs included, and
-beside SPH water the clamp failed (a plate under SPH water sank through 38 mm at spacing
-0.01, where plain clamps hold it at +37 %), so a scene with an SPH fluid refuses it
-(config/load.py); the total formulation's forces are the solid's alone.
+evaluation; its stress is left out through S = sigma / rho^2. There the pair forces of
+a held row with other materials (water, dummy walls) are not accumulated (`sph_rates`'
+`clamped` mask): the clamp takes them, so a ghost hands its partner the solid's forces alone,
+as in the total formulation. Beside SPH water the updated plate also needs the quadratic
+hourglass control (`[sph] hourglass_fit = "quadratic"`): without a control its columns pair
+up under the water's pressure, water passes between them, and the plate sinks (39 mm at
+spacing 0.01, with or without the mask; docs/plate.md).
 
 Partners are found once, in the reference configuration, by gid (the free particle of the
 same body within a quarter spacing of the image). A held particle within two smoothing

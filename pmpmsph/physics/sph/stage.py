@@ -36,7 +36,7 @@ from ...kernels.sph.correction import correction_matrices
 from ...kernels.sph.liu import COEF, liu_coefficients
 from ...kernels.sph.density import density_gradient
 from ...kernels.sph.shifting import shift_positions, shifting_state
-from ...kernels.sph.hourglass import hourglass_fit, hourglass_forces
+from ...kernels.sph.hourglass_quadratic import HOURGLASS_FITS
 from ...kernels.sph.integrate import (
     add_scaled,
     advance,
@@ -142,11 +142,13 @@ class SPHStage:
         self._sums = np.zeros((0, 52))
         # hourglass control of the solids (kernels/sph/hourglass.py; needs X0)
         self.hourglass = spec.hourglass if spec.formulation == "updated" else 0.0
+        # its fit, linear or quadratic (kernels/sph/hourglass_quadratic.py)
+        self._fit, self._fit_forces, _, fit_scratch = HOURGLASS_FITS[spec.hourglass_fit]
         # per material: a fluid (Tait) meets a solid of another material through the mirror
         # pair of kernels/sph/rates.py's sph_rates
         self.fluid = np.array([m.fluid for m in mats], np.bool_)
         self._M = np.zeros((0, 3, 3))
-        self._A = np.zeros((0, 3, 3))
+        self._A = np.zeros((0,) + fit_scratch)
         # delta-SPH: delta h c0 per material (c0 = sqrt(kappa gamma / rho0) of a Tait
         # fluid), 0 for the others; None when no fluid diffuses
         self.dcoef = None
@@ -205,7 +207,8 @@ class SPHStage:
             out.append(FieldSpec("X0", ("dim",), halo=True, output=True))
         if case.sph.hourglass > 0.0:
             out += [FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
-                    FieldSpec("Fh", (3, 3), migrate=False, halo=True)]
+                    FieldSpec("Fh", HOURGLASS_FITS[case.sph.hourglass_fit][2], migrate=False,
+                              halo=True)]
         if multi:
             out += [FieldSpec("x_n", ("dim",), migrate=False),
                     FieldSpec("v_n", ("dim",), migrate=False),
@@ -375,7 +378,7 @@ class SPHStage:
         n = p.n_owned
         self._A = rows_at_least(self._A, n)
         with self.timers.phase("sph"):
-            hourglass_fit(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
+            self._fit(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                           p.with_halo("X0"), p.with_halo("mass"), p.with_halo("rho"),
                           p.with_halo("method"), p.with_halo("mat"), self.fluid, self.start,
                           self.index, self._A, p.with_halo("Fh"))
@@ -468,9 +471,10 @@ class SPHStage:
                       "fsi" in p, self.corr_tag, self._B(), self.fluid,
                       p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)),
                       *self._diffusion(), self.morris_mu, self.split,
-                      p.with_halo("pw") if "pw" in p else None, self._liu())
+                      p.with_halo("pw") if "pw" in p else None, self._liu(),
+                      None if self._mirror is None else self._mirror.held_rows())
             if self.hourglass > 0.0:
-                hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
+                self._fit_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
                                  p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),
                                  rho, p.with_halo("cs"), p.with_halo("method"),
                                  p.with_halo("mat"), self.fluid, self.start, self.index,

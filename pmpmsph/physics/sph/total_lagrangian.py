@@ -20,7 +20,7 @@ import numpy as np
 
 from ...errors import RunError
 from ...kernels.neighbours import neighbour_lists
-from ...kernels.sph.hourglass import hourglass_fit, hourglass_forces
+from ...kernels.sph.hourglass_quadratic import HOURGLASS_FITS
 from ...kernels.sph.rates import sound_speeds, sph_stress_all
 from ...kernels.sph.integrate import add_scaled, first_outside
 from ...kernels.sph.kernel_functions import SUPPORT
@@ -53,7 +53,8 @@ class TLSPHStage(SPHStage):
         if state:
             out.append(FieldSpec("mstate0", (state,), halo=True))
         if case.sph.hourglass > 0.0:  # the fitted gradient of the hourglass control
-            out.append(FieldSpec("Fh", (3, 3), migrate=False, halo=True))
+            out.append(FieldSpec("Fh", HOURGLASS_FITS[case.sph.hourglass_fit][2],
+                                 migrate=False, halo=True))
         return out
 
     def __init__(self, case, particles, materials, decomposition, dist, timers=None):
@@ -67,7 +68,6 @@ class TLSPHStage(SPHStage):
         # hourglass control (kernels/sph/hourglass.py) over half lists of the reference
         # configuration; u = x - X0 is formed at each evaluation (no integrated field)
         self.hourglass = spec.hourglass
-        self._A = np.zeros((0, 3, 3))
         # the materials of the SPH solids: their rows (and MPM points of the same material,
         # seed 000's region coupling) form the reference configuration; the rows of other
         # materials, e.g. an MPM fluid's points, are neither neighbours nor written here
@@ -256,13 +256,13 @@ class TLSPHStage(SPHStage):
         with t.phase("sph"):
             sound_speeds(self.dim, nt, method, mat, rho, p.with_halo("F"), self.mtypes,
                          self.mparams, cs)
-            hourglass_fit(self.dim_tag, self.kern_tag, self.h, n, u, X0, mass, rho, method,
+            self._fit(self.dim_tag, self.kern_tag, self.h, n, u, X0, mass, rho, method,
                           mat, self.fluid, start, index, self._A, p.with_halo("Fh"))
         if self.halo_enabled and self.dist.size > 1:
             with t.phase("halo"):
                 self.halo.refresh(("Fh",))
         with t.phase("sph"):
-            hourglass_forces(self.dim_tag, self.kern_tag, self.h, n, u, X0, p.with_halo("Fh"),
+            self._fit_forces(self.dim_tag, self.kern_tag, self.h, n, u, X0, p.with_halo("Fh"),
                              mass, rho, cs, method, mat, self.fluid, start, index,
                              self.hourglass, acc)
 
