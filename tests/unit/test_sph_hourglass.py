@@ -222,3 +222,36 @@ def test_the_fit_option():
         with pytest.raises(ConfigError) as err:
             load_case_text(bad)
         assert err.value.key == "sph.hourglass_fit"
+
+
+def test_quadratic_fit_in_3d():
+    """3D (9 coefficients a component): a cube of 6^3 particles bent (u_x = -k x z,
+    u_z = k x^2 / 2) and stretched takes no force to round-off; a checkerboard is pushed
+    back along itself."""
+    g = (np.arange(6) - 2.5) * DP
+    X = np.ascontiguousarray([(a, b, c) for a in g for b in g for c in g])
+    n = len(X)
+    start, index = neighbour_lists(X, n, 2.0 * H, half=True)
+    mass, rho = np.full(n, RHO * DP**3), np.full(n, RHO)
+    method, mat, fluid = np.ones(n, np.int8), np.zeros(n, np.int32), np.zeros(1, np.bool_)
+    fit_rows, forces, shape, scratch = HOURGLASS_FITS["quadratic"]
+
+    def acc_of(u):
+        Q = np.zeros((n,) + shape)
+        fit_rows((0, 0, 0), (0,), H, n, u, X, mass, rho, method, mat, fluid, start, index,
+                 np.zeros((n,) + scratch), Q)
+        acc = np.zeros((n, 3))
+        forces((0, 0, 0), (0,), H, n, u, X, Q, mass, rho, np.full(n, C), method, mat, fluid,
+               start, index, 2.0, acc)
+        return acc
+
+    k = 0.4
+    bend = np.stack([-k * X[:, 0] * X[:, 2] + 0.02 * X[:, 1], 0.01 * X[:, 1],
+                     0.5 * k * X[:, 0] ** 2], axis=1)
+    assert np.abs(acc_of(np.ascontiguousarray(bend))).max() < 1e-8 * C * C / DP
+    i = np.rint(X / DP + 2.5).astype(int)
+    sign = np.where(i.sum(axis=1) % 2 == 0, 1.0, -1.0)
+    u = np.ascontiguousarray(1e-4 * DP * np.stack([sign, 0.5 * sign, -sign], axis=1))
+    acc = acc_of(u)
+    inner = np.all(np.abs(X) < 1.0 * DP, axis=1)
+    assert np.all(np.sum(acc[inner] * u[inner], axis=1) < 0)
