@@ -148,11 +148,12 @@ def _correction(t, formulation):
                       f"{formulation} formulation)")
 
 
-def _hourglass_fit(t):
-    """[sph] hourglass_fit: the field the hourglass control fits (kernels/sph/
-    hourglass_quadratic.py); refused without the control, where it would do nothing."""
+def _hourglass_fit(t, kappa):
+    """[sph] hourglass_fit: the field the hourglass control (factor `kappa`) fits
+    (kernels/sph/hourglass_quadratic.py); refused without the control, where it would do
+    nothing."""
     fit = t.string("hourglass_fit", "linear", choices=tuple(HOURGLASS_FITS))
-    if fit != "linear" and t.number("hourglass", 0.0, min=0.0) == 0.0:
+    if fit != "linear" and kappa == 0.0:
         raise ConfigError(t.key("hourglass_fit"), "the fit is the hourglass control's, and "
                           "sph.hourglass is 0 (off)")
     return fit
@@ -209,6 +210,7 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
             raise ConfigError(f"bodies[{i}].material", "wall particles take a fluid "
                               "material (their density follows the extrapolated pressure)")
     correction, correction_kind = _correction(t, formulation)
+    kappa = _hourglass(t, formulation, integrator)
     spec = SPHSpec(
         kernel=kernel, h=h, spacing=spacing,
         formulation=formulation,
@@ -225,9 +227,9 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         artificial_stress=t.number("artificial_stress", 0.0, min=0.0, max=1.0),
         artificial_stress_exponent=t.number("artificial_stress_exponent", 4.0, min_open=0.0),
         # the odd-even mode of the corrected solid (kernels/sph/hourglass.py), off by default
-        hourglass=_hourglass(t, formulation, integrator),
+        hourglass=kappa,
         # the field it fits: linear, or quadratic, which leaves bending alone
-        hourglass_fit=_hourglass_fit(t),
+        hourglass_fit=_hourglass_fit(t, kappa),
         damping=t.number("damping", 0.0, min=0.0),
         # delta of the delta-SPH density diffusion of fluids (kernels/sph/density.py);
         # 0.1 is Antuono et al.'s (2010) value, 0 switches it off

@@ -27,6 +27,8 @@ stays the energy's gradient. The moment matrix depends on the reference position
 volumes only. Measured (docs/plate.md): the same plate with kappa = 2 sags 2.63 mm, and under
 SPH water with mirror clamps it stays sound where without a control its columns pair up.
 """
+from typing import Callable, NamedTuple
+
 import numpy as np
 
 from ...codes import SPH
@@ -195,8 +197,17 @@ def quadratic_forces(dim_tag, kern_tag, h, n_query, u, X0, Q, mass, rho, cs, met
             if b < n_query:
                 acc[b, i] -= f / mass[b]
 
-#: `[sph] hourglass_fit`: name -> (fit, forces, shape of a row of the fitted coefficients
-#: (the field Fh), shape of a row of the fit's moment-matrix scratch)
-HOURGLASS_FITS = {"linear": (hourglass_fit, hourglass_forces, (3, 3), (3, 3)),
-                  "quadratic": (quadratic_fit, quadratic_forces, (3, QUADRATIC_TERMS),
-                                (QUADRATIC_TERMS, QUADRATIC_TERMS))}
+class HourglassFit(NamedTuple):
+    """One `[sph] hourglass_fit`: its fit and force kernels, the shape of a row of its
+    fitted coefficients (the field Fh) and of its moment-matrix scratch."""
+    fit: Callable
+    forces: Callable
+    coefficients: tuple
+    scratch: tuple
+
+
+#: `[sph] hourglass_fit`: name -> HourglassFit
+HOURGLASS_FITS = {"linear": HourglassFit(hourglass_fit, hourglass_forces, (3, 3), (3, 3)),
+                  "quadratic": HourglassFit(quadratic_fit, quadratic_forces,
+                                            (3, QUADRATIC_TERMS),
+                                            (QUADRATIC_TERMS, QUADRATIC_TERMS))}

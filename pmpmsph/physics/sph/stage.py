@@ -24,13 +24,8 @@ import numpy as np
 
 from ...codes import SPH
 from ...kernels.neighbours import moved_beyond, neighbour_lists
-from ...kernels.sph.rates import (
-    pair_stress,
-    sound_speeds,
-    sph_rates,
-    sph_stress,
-    sync_ghost_velocity,
-)
+from ...kernels.sph.rates import sph_rates
+from ...kernels.sph.stress import pair_stress, sound_speeds, sph_stress, sync_ghost_velocity
 from ...kernels.sph.artificial_stress import artificial_stress
 from ...kernels.sph.correction import correction_matrices
 from ...kernels.sph.liu import COEF, liu_coefficients
@@ -143,12 +138,13 @@ class SPHStage:
         # hourglass control of the solids (kernels/sph/hourglass.py; needs X0)
         self.hourglass = spec.hourglass if spec.formulation == "updated" else 0.0
         # its fit, linear or quadratic (kernels/sph/hourglass_quadratic.py)
-        self._fit, self._fit_forces, _, fit_scratch = HOURGLASS_FITS[spec.hourglass_fit]
+        fit = HOURGLASS_FITS[spec.hourglass_fit]
+        self._fit, self._fit_forces = fit.fit, fit.forces
         # per material: a fluid (Tait) meets a solid of another material through the mirror
         # pair of kernels/sph/rates.py's sph_rates
         self.fluid = np.array([m.fluid for m in mats], np.bool_)
         self._M = np.zeros((0, 3, 3))
-        self._A = np.zeros((0,) + fit_scratch)
+        self._A = np.zeros((0,) + fit.scratch)
         # delta-SPH: delta h c0 per material (c0 = sqrt(kappa gamma / rho0) of a Tait
         # fluid), 0 for the others; None when no fluid diffuses
         self.dcoef = None
@@ -207,8 +203,8 @@ class SPHStage:
             out.append(FieldSpec("X0", ("dim",), halo=True, output=True))
         if case.sph.hourglass > 0.0:
             out += [FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
-                    FieldSpec("Fh", HOURGLASS_FITS[case.sph.hourglass_fit][2], migrate=False,
-                              halo=True)]
+                    FieldSpec("Fh", HOURGLASS_FITS[case.sph.hourglass_fit].coefficients,
+                              migrate=False, halo=True)]
         if multi:
             out += [FieldSpec("x_n", ("dim",), migrate=False),
                     FieldSpec("v_n", ("dim",), migrate=False),

@@ -21,7 +21,7 @@ import numpy as np
 from ...errors import RunError
 from ...kernels.neighbours import neighbour_lists
 from ...kernels.sph.hourglass_quadratic import HOURGLASS_FITS
-from ...kernels.sph.rates import sound_speeds, sph_stress_all
+from ...kernels.sph.stress import sound_speeds, sph_stress_all
 from ...kernels.sph.integrate import add_scaled, first_outside
 from ...kernels.sph.kernel_functions import SUPPORT
 from ...kernels.sph.tlsph import (deformation_gradient, first_piola, internal_force,
@@ -53,7 +53,7 @@ class TLSPHStage(SPHStage):
         if state:
             out.append(FieldSpec("mstate0", (state,), halo=True))
         if case.sph.hourglass > 0.0:  # the fitted gradient of the hourglass control
-            out.append(FieldSpec("Fh", HOURGLASS_FITS[case.sph.hourglass_fit][2],
+            out.append(FieldSpec("Fh", HOURGLASS_FITS[case.sph.hourglass_fit].coefficients,
                                  migrate=False, halo=True))
         return out
 
