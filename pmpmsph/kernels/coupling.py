@@ -23,12 +23,15 @@ from .mpm.shapes import cpdi_domain, n_corners, node_counts, stencil
 
 
 @njit
-def add_gathered(dim_tag, kind_tag, lo_row, hi_row, x, v, lp, Fdom, pfield, gvec, gmass, scale,
-                 mass_cutoff, origin, offset, inv_dx, strides):
+def add_gathered(tags, lo_row, hi_row, x, v, layout, gvec, scale, gmass=None, mass_cutoff=0.0,
+                 lp=None, Fdom=None, pfield=None):
     """v_p += scale sum_I N_Ip g_I for the rows [lo_row, hi_row), g_I = gvec[field_p, I], or
     gvec[field_p, I] / m_I when `gmass` is given (nodes lighter than `mass_cutoff` then give
-    nothing: the grid solve keeps them at rest). `lp`, `Fdom`, `pfield` as in
-    `kernels.mpm.transfers.p2g` (None when the scene has none); positions are unchanged."""
+    nothing: the grid solve keeps them at rest). `tags`, `layout`, `lp`, `Fdom`, `pfield` as
+    in `kernels.mpm.transfers.p2g` (None when the scene has none); positions are
+    unchanged."""
+    dim_tag, kind_tag = tags
+    origin, offset, inv_dx, strides, _, _ = layout
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
     st[:dim] = strides
@@ -70,19 +73,17 @@ def add_gathered(dim_tag, kind_tag, lo_row, hi_row, x, v, lp, Fdom, pfield, gvec
 
 
 @njit
-def grid_force_kick(dim_tag, kind_tag, x, v, lp, Fdom, pfield, gmass, gforce, origin, offset,
-                    inv_dx, strides, dt, mass_cutoff):
+def grid_force_kick(tags, x, v, layout, gmass, gforce, dt, mass_cutoff, lp=None, Fdom=None,
+                    pfield=None):
     """v_q += dt sum_I N_Iq f_I / m_I for the rows of x (module doc). The grid's velocity
     boundary conditions are not applied: the transition zone lies inside the body, between
     the MPM and the SPH region."""
-    add_gathered(dim_tag, kind_tag, 0, x.shape[0], x, v, lp, Fdom, pfield, gforce, gmass, dt,
-                 mass_cutoff, origin, offset, inv_dx, strides)
+    add_gathered(tags, 0, x.shape[0], x, v, layout, gforce, dt, gmass, mass_cutoff, lp, Fdom,
+                 pfield)
 
 
 @njit
-def gather_increment(dim_tag, kind_tag, lo_row, hi_row, x, v, lp, pfield, dvc, origin,
-                     offset, inv_dx, strides):
+def gather_increment(tags, lo_row, hi_row, x, v, layout, dvc, lp=None, pfield=None):
     """v_p += sum_I N_I(x_p) dvc[field_p, I] for the rows [lo_row, hi_row) (module doc).
     CPDI is not supported (the caller passes no domain deformation)."""
-    add_gathered(dim_tag, kind_tag, lo_row, hi_row, x, v, lp, None, pfield, dvc, None, 1.0,
-                 0.0, origin, offset, inv_dx, strides)
+    add_gathered(tags, lo_row, hi_row, x, v, layout, dvc, 1.0, None, 0.0, lp, None, pfield)

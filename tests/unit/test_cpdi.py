@@ -11,6 +11,7 @@ import pytest
 
 from pmpmsph.kernels.mpm.transfers import p2g
 from pmpmsph.kernels.mpm.shapes import CPDI, static_tags
+from pmpmsph.kernels.mpm.views import NO_AFFINE, grid_layout, scatter_points
 
 
 def one_particle_p2g(dim, F, lp_cells, sigma, x_p, dx=0.1, nodes=16):
@@ -20,9 +21,11 @@ def one_particle_p2g(dim, F, lp_cells, sigma, x_p, dx=0.1, nodes=16):
     gmom = np.zeros((1, nodes ** dim, dim))
     gforce = np.zeros((1, nodes ** dim, dim))
     m, vol = 2.5, 0.3
-    p2g(*static_tags(dim, CPDI), x_p[None, :], np.zeros((1, dim)), np.array([m]),
-        np.array([vol]), sigma[None], None, np.array([lp_cells]), F[None], None, node0,
-        np.zeros(dim, np.int64), 1.0 / dx, strides, gmass, gmom, gforce, None, None)
+    layout = grid_layout(node0, np.zeros(dim, np.int64), 1.0 / dx, strides, node0, node0)
+    p2g(static_tags(dim, CPDI),
+        scatter_points(x_p[None, :], np.zeros((1, dim)), np.array([m]), np.array([vol]),
+                      sigma[None], NO_AFFINE), layout, gmass, gmom,
+        lp=np.array([lp_cells]), F=F[None], gforce=gforce)
     xs = np.stack(np.meshgrid(*[np.arange(nodes) * dx] * dim, indexing="ij"), -1).reshape(-1, dim)
     return m, vol, gmass[0], gforce[0], xs
 

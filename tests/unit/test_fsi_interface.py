@@ -9,6 +9,8 @@ import numpy as np
 
 from pmpmsph.kernels.neighbours import neighbour_lists
 from pmpmsph.kernels.sph.rates import sph_rates
+from pmpmsph.kernels.sph.views import (pair_lists, pair_rows, rate_options, rate_terms, rates,
+                                       smoothing_of)
 from pmpmsph.kernels.sph.walls import mirror_pressure
 
 MPM, SPH = 0, 1
@@ -25,14 +27,17 @@ def _rates(x, v, mass, rho, p, method, mat, fluid, h, gravity=None):
         for i in range(3):
             sigma[:, i, i] = -p
         pw = np.zeros(n)
-        mirror_pressure(2, 0, h, n, x, rho, sigma, mat, fluid, start, index, gravity, pw)
+        mirror_pressure(smoothing_of((0, 0), (0,), h), pair_lists(n, start, index), x, rho,
+                        sigma, mat, fluid, gravity, pw)
     S = np.zeros((n, 6))
     S[:, 0] = S[:, 1] = S[:, 2] = -p / rho**2
     acc, drho, L = np.zeros((n, 2)), np.zeros(n), np.zeros((n, 3, 3))
     fsi = np.zeros((n, 2))
-    sph_rates((0, 0), (0,), h, n, x, v, v, mass, rho, S, np.ones(n), method, mat, start,
-              index, 0.0, 0.0, False, np.zeros((0, 6)), 4.0, 1.0, np.zeros(3), 0.0, acc, drho,
-              L, True, False, fsi, True, (), np.zeros((0, 3, 3)), fluid, pw=pw)
+    sph_rates(smoothing_of((0, 0), (0,), h), pair_lists(n, start, index),
+              pair_rows(x, v, v, mass, rho, S, np.ones(n), method, mat),
+              rate_options((), fluid, np.zeros(3), damping=0.0, av_alpha=0.0, av_beta=0.0,
+                          want_force=True, want_L=False, want_fsi=True, split=False),
+              rate_terms(2, as_n=4.0, pw=pw), rates(acc, drho, L, fsi=fsi))
     return acc, drho, fsi
 
 

@@ -17,6 +17,7 @@ import pytest
 from pmpmsph.errors import ConfigError
 from pmpmsph.kernels.mpm.affine import g2p_affine, p2g_affine
 from pmpmsph.kernels.mpm.shapes import CUBIC, GIMP, LINEAR, QUADRATIC, static_tags
+from pmpmsph.kernels.mpm.views import grid_layout, scatter_points
 from pmpmsph.scene_api import Scene
 
 NODES = 12
@@ -53,9 +54,10 @@ def test_p2g_of_an_affine_field_is_exact(dim, shape, mls):
     lp = np.full((n, dim), 0.25) if shape == "gimp" else None
     gmass = np.zeros((1, nn))
     gmom = np.zeros((1, nn, dim))
-    p2g_affine(*static_tags(dim, SHAPES[shape]), mls, x, v, C, rng.uniform(1, 2, n),
-               rng.uniform(0.5, 1, n), np.zeros((n, 3, 3)), None, lp, None, None, origin,
-               offset, 1.0 / DX, strides, gmass, gmom, None, None, None)
+    layout = grid_layout(origin, offset, 1.0 / DX, strides, np.full(3, -1e9), np.full(3, 1e9))
+    p2g_affine(static_tags(dim, SHAPES[shape]), mls,
+               scatter_points(x, v, rng.uniform(1, 2, n), rng.uniform(0.5, 1, n),
+                             np.zeros((n, 3, 3)), C), layout, gmass, gmom, lp=lp)
     hit = gmass[0] > 1e-12 * gmass.max()
     vel = gmom[0][hit] / gmass[0][hit, None]
     exact = _node_positions(dim)[hit] @ A.T + b
@@ -63,9 +65,10 @@ def test_p2g_of_an_affine_field_is_exact(dim, shape, mls):
     # PIC (C = 0) does not give the affine nodal field
     gmass[:] = 0.0
     gmom[:] = 0.0
-    p2g_affine(*static_tags(dim, SHAPES[shape]), mls, x, v, np.zeros_like(C),
-               rng.uniform(1, 2, n), rng.uniform(0.5, 1, n), np.zeros((n, 3, 3)), None, lp,
-               None, None, origin, offset, 1.0 / DX, strides, gmass, gmom, None, None, None)
+    p2g_affine(static_tags(dim, SHAPES[shape]), mls,
+               scatter_points(x, v, rng.uniform(1, 2, n), rng.uniform(0.5, 1, n),
+                             np.zeros((n, 3, 3)), np.zeros_like(C)), layout, gmass, gmom,
+               lp=lp)
     assert np.abs(gmom[0][hit] / gmass[0][hit, None] - exact).max() > 1e-3
 
 
@@ -84,9 +87,10 @@ def test_g2p_of_an_affine_field_returns_it(dim, shape):
     C = np.zeros((n, 3, 3))
     L = np.zeros((n, 3, 3))
     dt = 1e-3
-    bad = g2p_affine(*static_tags(dim, SHAPES[shape]), False, x, v, C, lp, None, None, gvel,
-                     origin, offset, 1.0 / DX, strides, dt, np.full(dim, -1.0),
-                     np.full(dim, 2.0), L)
+    layout = grid_layout(origin, offset, 1.0 / DX, strides, np.full(dim, -1.0),
+                        np.full(dim, 2.0))
+    bad = g2p_affine(static_tags(dim, SHAPES[shape]), False, x, v, C, layout, gvel, dt,
+                     lp=lp, Lout=L)
     assert bad == -1
     assert np.abs(L[:, :dim, :dim] - A).max() < 1e-10  # the gradient the deformation takes
     assert np.abs(v - (x0 @ A.T + b)).max() < 1e-12

@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 
 from pmpmsph.kernels.mpm.transfers import g2p, p2g
+from pmpmsph.kernels.mpm.views import (NO_AFFINE, gather_options, gather_points, grid_layout,
+                                      material_table, scatter_points)
 from pmpmsph.kernels.mpm.shapes import CUBIC, GIMP, LINEAR, QUADRATIC, static_tags, weights_1d
 from pmpmsph.materials import material_from_table
 from pmpmsph.materials.dispatch import material_tag
@@ -17,6 +19,11 @@ NODES = 12      # per axis
 DX = 0.1
 LP = 0.25       # GIMP half-width (cells)
 SHAPES = {"linear": LINEAR, "gimp": GIMP, "quadratic": QUADRATIC, "cubic": CUBIC}
+
+
+def _layout(origin, offset, strides):
+    """The grid of `_grid` as the kernels' bundle (no particle leaves its box)."""
+    return grid_layout(origin, offset, 1.0 / DX, strides, np.full(3, -1e9), np.full(3, 1e9))
 
 
 def _grid(dim):
@@ -58,9 +65,9 @@ def test_p2g_equals_the_node_by_node_sums(dim, shape, fold):
     gmass, gmom, gforce = np.zeros((1, nn)), np.zeros((1, nn, dim)), np.zeros((1, nn, dim))
     dt = 0.37
     lp = np.full((len(x), dim), LP) if kind == GIMP else None
-    p2g(*static_tags(dim, kind), x, v, m, vol, S, fe, lp, None, None, origin, offset,
-        1.0 / DX, strides, gmass, gmom, None if fold else gforce, None,
-        dt if fold else None)
+    p2g(static_tags(dim, kind), scatter_points(x, v, m, vol, S, NO_AFFINE),
+        _layout(origin, offset, strides), gmass, gmom, fext=fe, lp=lp,
+        gforce=None if fold else gforce, force_dt=dt if fold else None)
     ref_m, ref_p, ref_f = np.zeros(nn), np.zeros((nn, dim)), np.zeros((nn, dim))
     for p in range(len(x)):
         for node, N, grad in _stencil(kind, dim, x[p], strides):
@@ -96,10 +103,12 @@ def test_g2p_equals_the_node_by_node_sums(dim, shape):
     x0 = x.copy()
     v = np.zeros((n, dim))
     dt = 1.0
-    g2p(*static_tags(dim, kind), material_tag(mtypes), (0,), x, v, F, np.zeros((n, 3, 3)),
-        vol.copy(), vol, lp, None, None, np.zeros(n, np.int32), mtypes, mparams,
-        np.empty((n, 0)), None, gvel, np.zeros_like(gvel), origin, offset, 1.0 / DX, strides,
-        dt, 0.0, np.full(3, -1e9), np.full(3, 1e9), 1e9, False)
+    g2p(static_tags(dim, kind),
+        gather_points(x, v, np.zeros((n, 3, 3)), vol.copy(), vol, np.zeros(n, np.int32),
+                     np.empty((n, 0))),
+        material_table(material_tag(mtypes), mtypes, mparams), _layout(origin, offset, strides),
+        gather_options(dt, flip=0.0, pic_tag=(0,), max_reach=1e9, want_signal=False), gvel,
+        gdv=np.zeros_like(gvel), F=F, lp=lp)
     for p in range(n):
         vp, L = np.zeros(dim), np.zeros((dim, dim))
         for node, N, grad in _stencil(kind, dim, x0[p], strides):

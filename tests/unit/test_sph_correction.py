@@ -9,6 +9,8 @@ import pytest
 
 from pmpmsph.kernels.neighbours import neighbour_lists
 from pmpmsph.kernels.sph.rates import sph_rates
+from pmpmsph.kernels.sph.views import (pair_lists, pair_rows, rate_options, rate_terms, rates,
+                                       smoothing_of)
 from pmpmsph.kernels.sph.correction import correction_matrices
 
 H_FACTOR = 1.3
@@ -41,10 +43,12 @@ def _rates(x, v, mass, rho, sigma, h, corr):
     S[:, 0], S[:, 1], S[:, 2] = sigma[:, 0, 0] * r2, sigma[:, 1, 1] * r2, sigma[:, 2, 2] * r2
     S[:, 3] = sigma[:, 0, 1] * r2
     acc, drho, L = np.zeros((n, dim)), np.zeros(n), np.zeros((n, 3, 3))
-    sph_rates((0,) * dim, (0,), h, n, x, v, v, mass, rho, S, np.ones(n), method, mat,
-              start, index, 0.0, 0.0, False, np.zeros((0, 6)), 4.0, 1.0, np.zeros(3), 0.0,
-              acc, drho, L, True, True, np.zeros((0, dim)), False, (0,) if corr else (), B,
-              np.zeros(1, np.bool_))
+    sph_rates(smoothing_of((0,) * dim, (0,), h), pair_lists(n, start, index),
+              pair_rows(x, v, v, mass, rho, S, np.ones(n), method, mat),
+              rate_options((0,) if corr else (), np.zeros(1, np.bool_), np.zeros(3),
+                          damping=0.0, av_alpha=0.0, av_beta=0.0, want_force=True,
+                          want_L=True, want_fsi=False, split=False),
+              rate_terms(dim, as_n=4.0, B=B), rates(acc, drho, L))
     return acc, drho, L, B
 
 

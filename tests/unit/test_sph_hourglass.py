@@ -6,6 +6,7 @@ import pytest
 
 from pmpmsph import ConfigError, load_case_text
 from pmpmsph.kernels.neighbours import neighbour_lists
+from pmpmsph.kernels.sph.views import pair_lists, smoothing_of
 from pmpmsph.kernels.sph.hourglass_quadratic import (HOURGLASS_FITS, quadratic_basis,
                                                      symmetric_pseudo_inverse)
 from pmpmsph.kernels.sph.kernel_functions import kernel_dwdr
@@ -34,14 +35,15 @@ def _evaluate(X, x, kappa=2.0, fit="linear"):
     method = np.ones(n, np.int8)
     mat = np.zeros(n, np.int32)
     fluid = np.zeros(1, np.bool_)
-    fit_rows, forces, shape, scratch = HOURGLASS_FITS[fit]
+    fit_pairs, fit_rows, forces, shape, scratch = HOURGLASS_FITS[fit]
     Fh = np.zeros((n,) + shape)
     u = np.ascontiguousarray(x - X)  # the kernels work on displacements
-    fit_rows((0, 0), (0,), H, n, u, X, mass, rho, method, mat, fluid, start, index,
+    smoothing, pairs = smoothing_of((0, 0), (0,), H), pair_lists(n, start, index)
+    control = fit_pairs(2, 0, H, n, X, method, mat, fluid, start, index)
+    fit_rows(smoothing, pairs, control, u, X, mass, rho, method, mat, fluid,
              np.zeros((n,) + scratch), Fh)
     acc = np.zeros((n, 2))
-    forces((0, 0), (0,), H, n, u, X, Fh, mass, rho, np.full(n, C), method, mat, fluid, start,
-           index, kappa, acc)
+    forces(smoothing, pairs, control, u, X, Fh, mass, rho, np.full(n, C), kappa, acc)
     return Fh, acc, mass
 
 
@@ -234,15 +236,16 @@ def test_quadratic_fit_in_3d():
     start, index = neighbour_lists(X, n, 2.0 * H, half=True)
     mass, rho = np.full(n, RHO * DP**3), np.full(n, RHO)
     method, mat, fluid = np.ones(n, np.int8), np.zeros(n, np.int32), np.zeros(1, np.bool_)
-    fit_rows, forces, shape, scratch = HOURGLASS_FITS["quadratic"]
+    fit_pairs, fit_rows, forces, shape, scratch = HOURGLASS_FITS["quadratic"]
+    control = fit_pairs(3, 0, H, n, X, method, mat, fluid, start, index)
 
     def acc_of(u):
         Q = np.zeros((n,) + shape)
-        fit_rows((0, 0, 0), (0,), H, n, u, X, mass, rho, method, mat, fluid, start, index,
+        smoothing, pairs = smoothing_of((0, 0, 0), (0,), H), pair_lists(n, start, index)
+        fit_rows(smoothing, pairs, control, u, X, mass, rho, method, mat, fluid,
                  np.zeros((n,) + scratch), Q)
         acc = np.zeros((n, 3))
-        forces((0, 0, 0), (0,), H, n, u, X, Q, mass, rho, np.full(n, C), method, mat, fluid,
-               start, index, 2.0, acc)
+        forces(smoothing, pairs, control, u, X, Q, mass, rho, np.full(n, C), 2.0, acc)
         return acc
 
     k = 0.4

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from pmpmsph.kernels.neighbours import neighbour_lists
+from pmpmsph.kernels.sph.views import pair_lists, smoothing_of
 from pmpmsph.kernels.sph.liu import COEF, liu_coefficients, liu_gradient
 from pmpmsph.kernels.sph.tlsph import kernel_correction
 
@@ -27,8 +28,8 @@ def test_half_list_coefficients_match_the_full_list_correction(dim):
     kernel_correction(x, vol, start, index, h, 0, dim, True, wt, gw)
     hs, hi = neighbour_lists(x, n, 2 * h, half=True)
     coef = np.zeros((n, COEF))
-    liu_coefficients((0,) * dim, (0,), h, n, x, mass, rho, np.ones(n, np.int8),
-                     np.zeros(n, np.int32), np.ones(n, np.bool_), hs, hi,
+    liu_coefficients(smoothing_of((0,) * dim, (0,), h), pair_lists(n, hs, hi), x, mass, rho,
+                     np.ones(n, np.int8), np.zeros(n, np.int32), np.ones(n, np.bool_),
                      np.zeros((n, 52)), coef)
     from pmpmsph.kernels.sph.kernel_functions import kernel_dwdr, kernel_w
 

@@ -8,6 +8,7 @@ from pmpmsph.config.case import GridSpec
 from pmpmsph.kernels.mpm.contact import contact_normals, multi_field_contact, surface_reach
 from pmpmsph.kernels.mpm.transfers import WITH_FORCE, grid_velocity, p2g
 from pmpmsph.kernels.mpm.shapes import GIMP, static_tags
+from pmpmsph.kernels.mpm.views import NO_AFFINE, scatter_points
 from pmpmsph.kernels.coupling import gather_increment
 from pmpmsph.physics.mpm.grid import Grid
 
@@ -39,9 +40,9 @@ def test_gathered_contact_momentum_balances_the_fluid_field():
     grid = Grid(GridSpec((0.0, 0.0), (0.1, 0.1), (10, 10)), nfields=2, with_normals=True)
     tags = static_tags(2, GIMP)
     grid.reset()
-    p2g(*tags, x, v, mass, np.full(n, 0.025**2), np.zeros((n, 3, 3)), None, lp, None, field,
-        grid.node0, grid.offset, grid.inv_dx, grid.strides, grid.mass, grid.mom, grid.force,
-        grid.mgrad, None)
+    p2g(tags, scatter_points(x, v, mass, np.full(n, 0.025**2), np.zeros((n, 3, 3)), NO_AFFINE),
+        grid.layout, grid.mass, grid.mom, lp=lp, pfield=field, gforce=grid.force,
+        gmgrad=grid.mgrad)
     grid_velocity(2, grid.mass, grid.mom, grid.force, grid.vel, grid.dv, 1e-4, np.zeros(3),
                   0.0, 1e-12, WITH_FORCE, 0, grid.n_nodes)
 
@@ -57,8 +58,7 @@ def test_gathered_contact_momentum_balances_the_fluid_field():
     fluid_change = np.einsum("i,ia->a", grid.mass[0], dvc[0])
     s = np.nonzero(solid)[0]
     v1 = v.copy()
-    gather_increment(*tags, s[0], n, x, v1, lp, field, dvc, grid.node0, grid.offset,
-                     grid.inv_dx, grid.strides)
+    gather_increment(tags, s[0], n, x, v1, grid.layout, dvc, lp=lp, pfield=field)
     assert np.all(v1[~solid] == v[~solid])   # the fluid rows are left to G2P
     solid_change = (mass[solid, None] * (v1[solid] - v[solid])).sum(axis=0)
     scale = np.abs(mass[:, None] * v).sum()

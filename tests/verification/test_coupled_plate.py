@@ -102,6 +102,11 @@ import pytest
 from mpi4py import MPI
 
 from pmpmsph import load_case_file
+from pmpmsph.kernels.neighbours import neighbour_lists
+from pmpmsph.kernels.sph.correction import correction_matrices
+from pmpmsph.kernels.sph.rates import sph_rates
+from pmpmsph.kernels.sph.views import (pair_lists, pair_rows, rate_options, rate_terms, rates,
+                                       smoothing_of)
 from pmpmsph.parallel.distributor import Distributor
 from pmpmsph.simulation import Simulation
 
@@ -213,9 +218,6 @@ def test_kirsch_field_velocity_gradient_at_the_hole_surface():
     Kirsch displacement on the case's particles, as plane-strain sigma_yy/s on the mid line
     against Kirsch at the particle. Plain kernel: the surface row 23 % short (the kernel cut
     by the free surface), the next rows within 3 %; corrected: 5 % short, then within 1.5 %."""
-    from pmpmsph.kernels.neighbours import neighbour_lists
-    from pmpmsph.kernels.sph.rates import sph_rates
-    from pmpmsph.kernels.sph.correction import correction_matrices
 
     case = load_case_file(CASE)
     sim = Simulation(case, dist=Distributor(MPI.COMM_SELF))
@@ -243,11 +245,13 @@ def test_kirsch_field_velocity_gradient_at_the_hole_surface():
             correction_matrices((0, 0), (0,), h, n, x, mass, rho, method, start, index,
                                 np.zeros((n, 3, 3)), B)
         L = np.zeros((n, 3, 3))
-        sph_rates((0, 0), (0,), h, n, x, u, u, mass, rho, np.zeros((n, 6)), np.ones(n),
-                  method, np.zeros(n, np.int32), start, index, 0.0, 0.0, False,
-                  np.zeros((0, 6)), 4.0, 1.0, np.zeros(3), 0.0, np.zeros((n, 2)),
-                  np.zeros(n), L, False, True, np.zeros((0, 2)), False,
-                  (0,) if corr else (), B, np.zeros(1, np.bool_))
+        sph_rates(smoothing_of((0, 0), (0,), h), pair_lists(n, start, index),
+                  pair_rows(x, u, u, mass, rho, np.zeros((n, 6)), np.ones(n), method,
+                           np.zeros(n, np.int32)),
+                  rate_options((0,) if corr else (), np.zeros(1, np.bool_), np.zeros(3),
+                              damping=0.0, av_alpha=0.0, av_beta=0.0, want_force=False,
+                              want_L=True, want_fsi=False, split=False),
+                  rate_terms(2, B=B), rates(np.zeros((n, 2)), np.zeros(n), L))
         e = 0.5 * (L + np.transpose(L, (0, 2, 1)))
         syy = lam * (e[:, 0, 0] + e[:, 1, 1]) + 2 * mu * e[:, 1, 1]
         xl, yl = x[line, 0] - C, x[line, 1] - C

@@ -30,6 +30,8 @@ from mpi4py import MPI
 from pmpmsph import load_case_file
 from pmpmsph.kernels.neighbours import neighbour_lists
 from pmpmsph.kernels.sph.rates import sph_rates
+from pmpmsph.kernels.sph.views import (pair_lists, pair_rows, rate_options, rate_terms, rates,
+                                       smoothing_of)
 from pmpmsph.kernels.sph.density import density_gradient
 from pmpmsph.parallel.distributor import Distributor
 from pmpmsph.simulation import Simulation
@@ -46,12 +48,13 @@ def _diffusion_rates(x, rho, mass, h, grad, cs=None, gravity=None):
     method, mat = np.ones(n, np.int8), np.zeros(n, np.int32)
     start, index = neighbour_lists(x, n, 2 * h, half=True)
     acc, drho, L, v = np.zeros((n, 2)), np.zeros(n), np.zeros((n, 3, 3)), np.zeros((n, 2))
-    sph_rates((0, 0), (0,), h, n, x, v, v, mass, rho, np.zeros((n, 6)),
-              np.ones(n) if cs is None else cs, method,
-              mat, start, index, 0.0, 0.0, False, np.zeros((0, 6)), 1.0, 1.0, gravity,
-              0.0, acc, drho, L, False, False, np.zeros((0, 2)), False, (),
-              np.zeros((0, 3, 3)), np.array([True]), None, np.ones(1), grad, None,
-              grad is None)
+    sph_rates(smoothing_of((0, 0), (0,), h), pair_lists(n, start, index),
+              pair_rows(x, v, v, mass, rho, np.zeros((n, 6)), np.ones(n) if cs is None else cs,
+                       method, mat),
+              rate_options((), np.array([True]), gravity, damping=0.0, av_alpha=0.0,
+                          av_beta=0.0, want_force=False, want_L=False, want_fsi=False,
+                          split=grad is None),
+              rate_terms(2, dcoef=np.ones(1), gradrho=grad), rates(acc, drho, L))
     return drho
 
 
@@ -66,9 +69,9 @@ def test_gradient_exact_and_diffusion_zero_for_a_linear_density():
     mass = np.full(n, 1000.0 * dp * dp)
     start, index = neighbour_lists(x, n, 2 * h, half=True)
     grad = np.zeros((n, 3))
-    density_gradient((0, 0), (0,), h, n, x, mass, rho, np.ones(n, np.int8),
-                     np.zeros(n, np.int32), np.ones(1), start, index, np.zeros((n, 3, 3)),
-                     grad)
+    density_gradient(smoothing_of((0, 0), (0,), h), pair_lists(n, start, index), x, mass, rho,
+                     np.ones(n, np.int8), np.zeros(n, np.int32), np.ones(1),
+                     np.zeros((n, 3, 3)), grad)
     assert np.abs(grad[:, :2] - slope).max() < 1e-9 * np.abs(slope).max()
     assert np.all(grad[:, 2] == 0.0)
     scale = np.abs(slope).max() / h  # |grad rho| h / h^2: the size of one pair term

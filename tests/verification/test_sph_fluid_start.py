@@ -17,6 +17,7 @@ from mpi4py import MPI
 
 from pmpmsph import load_case_file
 from pmpmsph.kernels.sph.integrate import advance
+from pmpmsph.kernels.sph.views import sph_state, rates
 from pmpmsph.parallel.distributor import Distributor
 from pmpmsph.simulation import Simulation
 
@@ -68,8 +69,8 @@ def test_log_density_update_stays_positive_and_is_first_order_linear():
     drho = np.array([-3.0e5, -1.0])   # a splash (rate 300 / s) and a gentle one
     x0, v0, r0, F0 = x.copy(), v.copy(), rho.copy(), F.copy()
     dt = 1e-2
-    advance(dim_tag, n, method, 1.0, x0, v0, r0, F0, 0.0, dt, x, v, rho, F, acc, drho, L,
-            False, False)
+    advance(dim_tag, n, method, sph_state(x0, v0, r0, F0), sph_state(x, v, rho, F),
+            rates(acc, drho, L), 1.0, 0.0, dt, False, False)
     assert np.allclose(rho, 1000.0 * np.exp(dt * drho / 1000.0), rtol=1e-14)
     assert rho[0] > 0.0                        # the linear update gives -2000
     assert abs(rho[1] - (1000.0 + dt * drho[1])) < 1e-7

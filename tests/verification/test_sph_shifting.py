@@ -24,6 +24,7 @@ from mpi4py import MPI
 
 from pmpmsph import Scene
 from pmpmsph.kernels.neighbours import neighbour_lists
+from pmpmsph.kernels.sph.views import pair_lists, shift_fields, smoothing_of
 from pmpmsph.kernels.sph.shifting import SURFACE, shifting_state
 from pmpmsph.parallel.distributor import Distributor
 
@@ -41,9 +42,9 @@ def test_concentration_gradient_surface_and_velocity_gradient():
     v = np.c_[0.5 * x[:, 1], -0.2 * x[:, 0]]
     start, index = neighbour_lists(x, n, 2 * h, half=True)
     gradc, lam, gradv = np.zeros((n, 3)), np.zeros(n), np.zeros((n, 3, 3))
-    shifting_state((0, 0), (0,), h, n, x, v, np.full(n, 10.0), np.full(n, 1000.0),
-                   np.ones(n, np.int8), np.zeros(n, np.int32), np.array([True]), start,
-                   index, np.zeros((n, 3, 3)), gradc, lam, gradv)
+    shifting_state(smoothing_of((0, 0), (0,), h), pair_lists(n, start, index), x, v,
+                   np.full(n, 10.0), np.full(n, 1000.0), np.ones(n, np.int8), np.zeros(n, np.int32),
+                   np.array([True]), np.zeros((n, 3, 3)), shift_fields(gradc, lam, gradv))
     assert gradc[moved, 0] > 0 and abs(gradc[moved, 1]) < 1e-12
     assert lam[moved] > 0.9 and lam[0] < SURFACE and lam[5] < SURFACE
     assert np.allclose(gradv[moved, :2, :2], [[0.0, 0.5], [-0.2, 0.0]], atol=1e-12)

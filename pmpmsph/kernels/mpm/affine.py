@@ -62,14 +62,18 @@ def _layout(dim_tag, kind_tag, strides, offset, n_nodes, inv_dx):
 
 
 @njit
-def p2g_affine(dim_tag, kind_tag, mls, x, v, C, mass, vol, sigma, fext, lp, F, pfield, origin,
-               offset, inv_dx, strides, gmass, gmom, gforce, gmgrad, force_dt):
+def p2g_affine(tags, mls, points, layout, gmass, gmom, fext=None, lp=None, F=None, pfield=None,
+               gforce=None, gmgrad=None, force_dt=None):
     """P2G with the affine momentum m_p C_p (x_I - x_p) (Jiang 2015 eq. 12).
 
     The force of node I is sum_p N_I f_p - vol_p sigma_p g_I with g_I = grad N_I (APIC) or
-    D^-1 N_I (x_I - x_p) (`mls`, Hu 2018 eq. 18). Arguments as `kernels.mpm.transfers.p2g`: `gforce`
-    None and `force_dt` = dt fold the force into the momentum (p + dt f).
+    D^-1 N_I (x_I - x_p) (`mls`, Hu 2018 eq. 18). Arguments as `kernels.mpm.transfers.p2g`
+    (`points` with C): `gforce` None and `force_dt` = dt fold the force into the momentum
+    (p + dt f).
     """
+    dim_tag, kind_tag = tags
+    x, v, mass, vol, sigma, C = points
+    origin, offset, inv_dx, strides, _, _ = layout
     dim, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
                                                  gmass.shape[1], inv_dx)
     dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)
@@ -126,14 +130,16 @@ def p2g_affine(dim_tag, kind_tag, mls, x, v, C, mass, vol, sigma, fext, lp, F, p
 
 
 @njit
-def g2p_affine(dim_tag, kind_tag, mls, x, v, C, lp, Fdom, pfield, gvel, origin, offset, inv_dx,
-               strides, dt, lo, hi, Lout):
+def g2p_affine(tags, mls, x, v, C, layout, gvel, dt, lp=None, Fdom=None, pfield=None,
+               Lout=None):
     """G2P of APIC / MLS-MPM: v_p = sum N_I v_I, C_p = B_p D_p^-1 (see the module),
     x_p += dt v_p. `Lout` (None, or n x 3 x 3) receives the velocity gradient the deformation
     is to use, evaluated before the move: sum v_I grad N_I^T (APIC) or C_p (`mls`);
     `kernels.mpm.transfers.g2p` with `Lp = Lout` then updates F and the stress. Returns the index of
-    the first particle that left the box [lo, hi] (or -1).
+    the first particle that left the box [lo, hi] of `layout` (or -1).
     """
+    dim_tag, kind_tag = tags
+    origin, offset, inv_dx, strides, lo, hi = layout
     dim, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
                                                  gvel.shape[1], inv_dx)
     dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)

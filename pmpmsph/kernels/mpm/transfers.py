@@ -15,9 +15,11 @@ from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 
 @njit
-def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, offset,
-        inv_dx, strides, gmass, gmom, gforce, gmgrad, force_dt):
-    """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65).
+def p2g(tags, points, layout, gmass, gmom, fext=None, lp=None, F=None, pfield=None,
+        gforce=None, gmgrad=None, force_dt=None):
+    """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65)
+    of the particles `points` (kernels/mpm/views.py `ScatterPoints`; C is not read) onto the
+    nodes of `layout` (`grid_layout`).
 
     Internal force of node I: -sum_p vol_p sigma_p . grad N_I(x_p); external: sum_p N_I f_p.
     Gravity is added on the grid (m_I g is exactly sum_p N_I m_p g).
@@ -25,13 +27,17 @@ def p2g(dim_tag, kind_tag, x, v, mass, vol, sigma, fext, lp, F, pfield, origin, 
     `fext` (particle forces), `lp` (GIMP/CPDI half-widths; None for other shapes), `F` (the
     deformation gradient that shapes a CPDI domain; None for other shapes), `pfield` (the
     velocity field of each particle for multi-field contact; None: field 0), `gmgrad` (mass
-    gradients sum_p m_p grad N_I for contact normals). `dim_tag`/`kind_tag` are the
-    compile-time dimension and shape function (`static_tags`); `origin` is the position of
-    global node 0 (`Grid.node0`) and `offset` the global index of local node 0 per axis.
+    gradients sum_p m_p grad N_I for contact normals). `tags` = (dim_tag,
+    kind_tag) are the compile-time dimension and shape function (`static_tags`); in
+    `layout`, `origin` is the position of global node 0 (`Grid.node0`) and `offset` the
+    global index of local node 0 per axis.
     `force_dt` = dt folds the forces into the momentum (gmom receives p + dt f, gforce is
     None): the form of Taichi's mpm88, for PIC-USL without damping, where the grid needs only
     the updated velocity; None scatters them apart.
     """
+    dim_tag, kind_tag = tags
+    x, v, mass, vol, sigma, _ = points
+    origin, offset, inv_dx, strides, _, _ = layout
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
     st[:dim] = strides
@@ -173,10 +179,11 @@ def grid_velocity(dim, gmass, gmom, gforce, gvel, gdv, dt, gravity, damping, mas
 
 
 @njit
-def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom, pfield, mat,
-        mtypes, mparams, mstate, prestress, gvel, gdv, origin, offset, inv_dx, strides, dt,
-        flip, lo, hi, max_reach, want_signal, Lp=None):
-    """Gather from the grid (eqs. 80-86) for every particle.
+def g2p(tags, points, materials, layout, options, gvel, gdv=None, F=None, lp=None, Fdom=None,
+        pfield=None, prestress=None, Lp=None):
+    """Gather from the grid (eqs. 80-86) for every particle of `points` (kernels/mpm/views.py
+    `gather_points`), with `materials` (`material_table`), the nodes of `layout` (`grid_layout`)
+    and the step's `options` (`gather_options`); the names below are the bundles' members.
 
     Kinematics: v_p <- flip (v_p + sum N dv) + (1 - flip) sum N v_new (FLIP/PIC blend),
     x_p <- x_p + dt sum N v_new. Deformation: L = sum v_new (x) grad N, F <- (I + dt L) F
@@ -193,12 +200,18 @@ def g2p(dim_tag, kind_tag, mat_tag, pic_tag, x, v, F, sigma, vol, vol0, lp, Fdom
     here: each particle's domain is read before its F changes), None for other shapes; a
     CPDI domain that grows beyond `max_reach` cells is reported like an inversion.
     `origin` and `offset` place the local grid as in `p2g`.
-    `mat_tag` fixes the material type at compile time when all particles share it
-    (`material_tag`); `pic_tag` = (0,) when flip = 0 (PIC: the increments are not gathered
-    and v_p is sum N v_new itself), () otherwise, also fixed at compile time.
+    `mat_tag` (the `materials.tag`) fixes the material type at compile time when all
+    particles share it (`material_tag`); `pic_tag` = (0,) when flip = 0 (PIC: the
+    increments are not gathered and v_p is sum N v_new itself), () otherwise, also fixed at
+    compile time.
     `Lp` (n, 3, 3), when given with `gdv = None`, is each particle's velocity gradient,
     gathered already (`kernels.mpm.affine.g2p_affine`): the grid is not read.
     """
+    dim_tag, kind_tag = tags
+    x, v, sigma, vol, vol0, mat, mstate = points
+    mat_tag, mtypes, mparams = materials
+    origin, offset, inv_dx, strides, lo, hi = layout
+    dt, flip, pic_tag, max_reach, want_signal = options
     dim = len(dim_tag)
     st = np.zeros(3, np.int64)
     st[:dim] = strides

@@ -46,14 +46,15 @@ DIFFUSION_MIN_DET = 0.1
 
 
 @njit
-def density_gradient(dim_tag, kern_tag, h, n_query, x, mass, rho, method, mat, dcoef, start,
-                     index, M, grad):
+def density_gradient(smoothing, pairs, x, mass, rho, method, mat, dcoef, M, grad):
     """<grad rho>_a of the owned rows [0, n_query) that diffuse (SPH rows of a material with
     dcoef[mat] > 0), over half neighbour lists (each pair once, both ends), from the SPH
     neighbours of the same material (walls and MPM points take no part in the diffusion).
     `M` is scratch of shape (>= n_query, 3, 3) (its symmetric part is filled); `grad` has a
     row per owned row. Row a's sums are kept in scalars over its list and the b ends
     written as they come (this pass costs a fraction of the rates' pair loop)."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     for a in range(n_query):

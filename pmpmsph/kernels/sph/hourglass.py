@@ -104,22 +104,22 @@ def control_pairs(dim, kern, h, n_query, X0, method, mat, fluid, start, index):
 
 
 @njit
-def hourglass_fit(dim_tag, kern_tag, h, n_query, u, X0, mass, rho, method, mat, fluid,
-                  start, index, A, Fh):
+def hourglass_fit(smoothing, pairs, control, u, X0, mass, rho, method, mat, fluid, A, Fh):
     """Fh_a = 1 + C_a A_a^-1 for the owned SPH rows [0, n_query) of a solid: the weighted
     least-squares fit of u_b - u_a = (Fh_a - 1) (X_b - X_a) over the SPH neighbours b of a's
     material (u: displacements, module docstring), weights V_b phi(|X_ba|), with
     C_a = sum_b w u_ba (x) X_ba and A_a = sum_b w X_ba (x) X_ba (scratch, >= n_query rows).
-    Over half neighbour lists. A row whose A is (nearly) singular gets Fh = 0 (its pair
-    terms are then skipped)."""
+    Over the pairs `control` = (rows, phi) of `control_pairs`. A row whose A is (nearly)
+    singular gets Fh = 0 (its pair terms are then skipped)."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
     dim = len(dim_tag)
     for a in range(n_query):
         for i in range(3):
             for j in range(3):
                 A[a, i, j] = 0.0
                 Fh[a, i, j] = 0.0
-    rows, phi = control_pairs(dim, len(kern_tag) - 1, h, n_query, X0, method, mat, fluid,
-                              start, index)
+    rows, phi = control
     for m in range(len(phi)):
         a, b = rows[m, 0], rows[m, 1]
         wa = mass[b] / rho[b] * phi[m]
@@ -162,15 +162,15 @@ HOURGLASS_MIN_DET = 1e-2
 
 
 @njit
-def hourglass_forces(dim_tag, kern_tag, h, n_query, u, X0, Fh, mass, rho, cs, method, mat,
-                     fluid, start, index, kappa, acc):
+def hourglass_forces(smoothing, pairs, control, u, X0, Fh, mass, rho, cs, kappa, acc):
     """Adds the hourglass control (module docstring) to acc of the owned SPH rows
-    [0, n_query), over half neighbour lists (each pair once, both ends; a halo row b takes
-    no force here, its owner adds it). Only pairs of two SPH rows of one solid material,
-    both with a fit (Fh != 0; `hourglass_fit`, refreshed in the halo)."""
+    [0, n_query), over the pairs `control` of `control_pairs` (each pair once, both ends; a
+    halo row b takes no force here, its owner adds it): pairs of two SPH rows of one solid
+    material, both with a fit (Fh != 0; `hourglass_fit`, refreshed in the halo)."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
     dim = len(dim_tag)
-    rows, phi = control_pairs(dim, len(kern_tag) - 1, h, n_query, X0, method, mat, fluid,
-                              start, index)
+    rows, phi = control
     for m in range(len(phi)):
         a, b = rows[m, 0], rows[m, 1]
         if Fh[a, 0, 0] == 0.0 or Fh[b, 0, 0] == 0.0:

@@ -125,15 +125,15 @@ def symmetric_pseudo_inverse(A, n, Ainv, work, vectors):
 
 
 @njit
-def quadratic_fit(dim_tag, kern_tag, h, n_query, u, X0, mass, rho, method, mat, fluid,
-                  start, index, A, Q):
+def quadratic_fit(smoothing, pairs, control, u, X0, mass, rho, method, mat, fluid, A, Q):
     """Q_a (module docstring) of the owned SPH rows [0, n_query) of a solid, over the SPH
-    neighbours of a's material; A: moment-matrix scratch (>= n_query rows of 9 x 9). Over
-    half neighbour lists, as `kernels.sph.hourglass.hourglass_fit`."""
+    neighbours of a's material, the pairs `control` of `quadratic_pairs`; A: moment-matrix
+    scratch (>= n_query rows of 9 x 9). As `kernels.sph.hourglass.hourglass_fit`."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
     dim = len(dim_tag)
     nb = dim + dim * (dim + 1) // 2
-    rows, phi, P, Pb = quadratic_pairs(dim, len(kern_tag) - 1, h, n_query, X0, method, mat,
-                                       fluid, start, index)
+    rows, phi, P, Pb = control
     for a in range(n_query):
         A[a] = 0.0
         Q[a] = 0.0
@@ -171,15 +171,16 @@ def quadratic_fit(dim_tag, kern_tag, h, n_query, u, X0, mass, rho, method, mat, 
 
 
 @njit
-def quadratic_forces(dim_tag, kern_tag, h, n_query, u, X0, Q, mass, rho, cs, method, mat,
-                     fluid, start, index, kappa, acc):
+def quadratic_forces(smoothing, pairs, control, u, X0, Q, mass, rho, cs, kappa, acc):
     """Adds the quadratic-fit hourglass control (module docstring) to acc of the owned SPH
-    rows [0, n_query), over half neighbour lists (a halo row b takes no force here, its
-    owner adds it). Pairs of two SPH rows of one solid material (Q refreshed in the halo)."""
+    rows [0, n_query), over the pairs `control` of `quadratic_pairs` (a halo row b takes no
+    force here, its owner adds it): pairs of two SPH rows of one solid material (Q
+    refreshed in the halo)."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
     dim = len(dim_tag)
     nb = dim + dim * (dim + 1) // 2
-    rows, phi, P, Pb = quadratic_pairs(dim, len(kern_tag) - 1, h, n_query, X0, method, mat,
-                                       fluid, start, index)
+    rows, phi, P, Pb = control
     for m in range(len(phi)):
         a, b = rows[m, 0], rows[m, 1]
         Ma = rho[a] * cs[a] * cs[a]
@@ -198,8 +199,10 @@ def quadratic_forces(dim_tag, kern_tag, h, n_query, u, X0, Q, mass, rho, cs, met
                 acc[b, i] -= f / mass[b]
 
 class HourglassFit(NamedTuple):
-    """One `[sph] hourglass_fit`: its fit and force kernels, the shape of a row of its
-    fitted coefficients (the field Fh) and of its moment-matrix scratch."""
+    """One `[sph] hourglass_fit`: its pair list (made once per neighbour list: it depends on
+    the reference positions only), fit and force kernels, the shape of a row of its fitted
+    coefficients (the field Fh) and of its moment-matrix scratch."""
+    pairs: Callable
     fit: Callable
     forces: Callable
     coefficients: tuple
@@ -207,7 +210,8 @@ class HourglassFit(NamedTuple):
 
 
 #: `[sph] hourglass_fit`: name -> HourglassFit
-HOURGLASS_FITS = {"linear": HourglassFit(hourglass_fit, hourglass_forces, (3, 3), (3, 3)),
-                  "quadratic": HourglassFit(quadratic_fit, quadratic_forces,
+HOURGLASS_FITS = {"linear": HourglassFit(control_pairs, hourglass_fit, hourglass_forces,
+                                         (3, 3), (3, 3)),
+                  "quadratic": HourglassFit(quadratic_pairs, quadratic_fit, quadratic_forces,
                                             (3, QUADRATIC_TERMS),
                                             (QUADRATIC_TERMS, QUADRATIC_TERMS))}

@@ -10,13 +10,16 @@ from ...jit import njit
 
 
 @njit
-def advance(dim_tag, n, method, c0, x0, v0, r0, F0, c1, dtc, x, v, rho, F, acc, drho, L,
-            save, with_F):
+def advance(dim_tag, n, method, step_start, state, rates, c0, c1, dtc, save, with_F):
     """y <- c0 y0 + c1 y + dtc f(y) for y = (x, v, log rho, F), f = (v, acc, drho/rho, L F),
-    on owned SPH rows (walls stay put). One formula covers Euler, predictor-corrector and
-    TVD-RK3 stages. Positions move with the velocity at the start of the stage. With `save`
-    the current y is first copied to y0 (the step start) in the same pass; without `with_F`
-    F is left alone (fluids: F follows from the density)."""
+    y0 and y the `sph_state` bundles `step_start` and `state`, f from `rates`
+    (kernels/sph/views.py), on owned SPH rows (walls stay put). One formula covers Euler,
+    predictor-corrector and TVD-RK3 stages. Positions move with the velocity at the start
+    of the stage. With `save` the current y is first copied to y0 (the step start) in the
+    same pass; without `with_F` F is left alone (fluids: F follows from the density)."""
+    x0, v0, r0, F0 = step_start
+    x, v, rho, F = state
+    acc, drho, L, _, _ = rates
     dim = len(dim_tag)
     LF = np.zeros((3, 3))
     for a in range(n):

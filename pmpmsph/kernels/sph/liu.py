@@ -106,12 +106,13 @@ def liu_gradient(dim, coef, r, w, dw, out):
 
 
 @njit
-def liu_coefficients(dim_tag, kern_tag, h, n_query, x, mass, rho, method, mat, need, start,
-                     index, sums, coef):
+def liu_coefficients(smoothing, pairs, x, mass, rho, method, mat, need, sums, coef):
     """The coefficients of the rows [0, n_query) with need[a], over half neighbour lists
     (each pair once, both ends) of the same material, with the row itself (W(0)); volumes
     m / rho. `sums` is scratch (>= n_query rows of 52). Rows without need get coef[a, 0] = 0.
     Returns the number of rows that took the Shepard fallback."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     w0 = kernel_w(kern, dim, 0.0, h)

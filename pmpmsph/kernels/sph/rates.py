@@ -18,17 +18,15 @@ import numpy as np
 from ...jit import njit
 from ...codes import MPM, SPH, WALL
 from .kernel_functions import kernel_dwdr, kernel_w
-from .liu import COEF, liu_gradient
+from .liu import liu_gradient
 
 
 
 @njit
-def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method, mat,
-              start, index, av_alpha, av_beta, use_as, R, as_n, w_dp, gravity, damping,
-              acc, drho, L, want_force, want_L, fsi, want_fsi, corr_tag, B, fluid, fcpl=None,
-              dcoef=None, gradrho=None, morris_mu=None, split=False, pw=None, liu=None,
-              clamped=None):
-    """Rates of owned SPH rows [0, n_query): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
+def sph_rates(smoothing, pairs, rows, options, terms, out):
+    """Rates of owned SPH rows [0, n_query), from the bundles of kernels/sph/views.py
+    (`smoothing_of`, `pair_lists`, `pair_rows`, `rate_options`, `rate_terms`, written to
+    `rates`; the names below are their members): acc = dv/dt (eq. 2.6 with -Pi_ab I and the
     artificial-stress term f_ab^n (R_a + R_b), f_ab = W(r_ab)/W(dp)), plus gravity and the
     damping -alpha v; drho = drho/dt (eq. 2.5); L_a = 1/rho_a sum_b m_b (v~_b - v_a) (x) grad_a W_ab
     (eq. 2.9 before symmetrisation, with 1/rho_a for m_b/rho_b: this is the velocity gradient
@@ -144,25 +142,24 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     It discretises mu lap(v) with second-order accuracy on regular lattices, and near a wall
     it sees the wall's velocity through the ghost: the stress form's wall pairs carry the
     wall's extrapolated viscous stress instead (`kernels.sph.walls.wall_state`)."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
+    x, v, vg, mass, rho, S, cs, method, mat = rows
+    (corr_tag, fluid, gravity, damping, av_alpha, av_beta, want_force, want_L, want_fsi,
+     split) = options
+    R, as_n, w_dp, B, liu, dcoef, gradrho, morris_mu, pw, clamped = terms
+    acc, drho, L, fsi, fcpl = out
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     corr = len(corr_tag) > 0
-    if liu is None:  # (Bonet-Lok's B, or no correction)
-        liu = np.zeros((0, COEF))
-    use_liu = liu.shape[0] > 0
+    use_as = R.shape[0] > 0
+    use_liu = liu.shape[0] > 0  # (else Bonet-Lok's B, or no correction)
     rv = np.zeros(3)
     gv = np.zeros(3)
     eps2 = 0.01 * h * h
     h4 = 4.0 * h * h
-    if fcpl is None:  # (not coupled, or the seed's interface)
-        fcpl = np.zeros((0, dim))
-    one_sided = fcpl.shape[0] > 0
-    if dcoef is None:  # (no delta-SPH diffusion)
-        dcoef = np.zeros(0)
-        gradrho = np.zeros((0, 3))
-    diffuse = dcoef.shape[0] > 0
-    if gradrho is None:  # (Fourtakas' splitting needs no gradients)
-        gradrho = np.zeros((0, 3))
+    one_sided = fcpl.shape[0] > 0  # (else not coupled, or the seed's interface)
+    diffuse = dcoef.shape[0] > 0  # (delta-SPH; Fourtakas' splitting needs no gradrho)
     # Fourtakas' splitting: drho/dp = 1/c^2 of each row, so rho^H_ba = -(q_a + q_b)/2 g . x_ab
     # with q = rho/c^2 (kernels/sph/density.py), a load per pair instead of a division
     rho_c2 = np.zeros(x.shape[0] if split else 0)
@@ -171,15 +168,9 @@ def sph_rates(dim_tag, kern_tag, h, n_query, x, v, vg, mass, rho, S, cs, method,
     gx0 = gravity[0]
     gx1 = gravity[1] if dim > 1 else 0.0
     gx2 = gravity[2] if dim > 2 else 0.0
-    if pw is None:  # (the plain mirror: the solid point carries the fluid's own pressure)
-        pw = np.zeros(0)
-    with_pw = pw.shape[0] > 0
-    if clamped is None:  # (no mirror clamp of an updated solid)
-        clamped = np.zeros(0, np.bool_)
-    with_clamped = clamped.shape[0] > 0
-    if morris_mu is None:  # (no pairwise viscosity)
-        morris_mu = np.zeros(0)
-    pairwise = morris_mu.shape[0] > 0
+    with_pw = pw.shape[0] > 0  # (else the plain mirror: the fluid's own pressure)
+    with_clamped = clamped.shape[0] > 0  # (mirror clamps of an updated solid)
+    pairwise = morris_mu.shape[0] > 0  # (Morris' viscosity)
     if want_fsi or one_sided:
         for a in range(n_query):
             if method[a] == MPM:

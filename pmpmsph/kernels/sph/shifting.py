@@ -35,12 +35,15 @@ MAX_SHIFT = 0.2
 
 
 @njit
-def shifting_state(dim_tag, kern_tag, h, n_query, x, vg, mass, rho, method, mat, fluid,
-                   start, index, M, gradc, lam, gradv):
+def shifting_state(smoothing, pairs, x, vg, mass, rho, method, mat, fluid, M, state):
     """grad C_a, lambda_a and the renormalised velocity gradient (grad v)_a (row i: grad of
-    v_i) of the owned fluid SPH rows [0, n_query) (module docstring), over half neighbour
-    lists (each pair once, both ends); `vg` is v, or the ghost velocity on walls. `M` is
-    scratch of shape (>= n_query, 3, 3); rows that do not shift get gradc = 0, lam = 1."""
+    v_i) of the owned fluid SPH rows [0, n_query) (module docstring), into `state`
+    (`shift_fields`), over half neighbour lists (each pair once, both ends); `vg` is v, or
+    the ghost velocity on walls. `M` is scratch of shape (>= n_query, 3, 3); rows that do
+    not shift get gradc = 0, lam = 1."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
+    gradc, lam, gradv = state
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
     for a in range(n_query):
@@ -144,11 +147,13 @@ def _smallest_eigenvalue3(m):
 
 
 @njit
-def shift_positions(dim_tag, n, method, mat, fluid, x, v, gradc, lam, gradv, rho, gradrho,
-                    coef, dt, spacing):
+def shift_positions(dim_tag, n, method, mat, fluid, x, v, rho, gradrho, state, coef, dt,
+                    spacing):
     """x_a += delta x_a of the owned fluid SPH rows (module docstring), v_a (and rho_a, when
-    `gradrho` has rows: delta-SPH is on) by the Taylor correction; `coef` = A h. Returns the
-    largest shift, in spacings."""
+    `gradrho` has rows: delta-SPH is on) by the Taylor correction, from `state`
+    (`shift_fields`, of `shifting_state`); `coef` = A h. Returns the largest shift, in
+    spacings."""
+    gradc, lam, gradv = state
     dim = len(dim_tag)
     largest = 0.0
     cap = MAX_SHIFT * spacing

@@ -55,15 +55,18 @@ def pair_stress(dim_tag, n, sigma, rho, S):
 
 
 @njit
-def sph_stress(n, method, mat, rho, F, L, dt, mstate_in, mstate, mtypes, mparams,
-               sigma, vol, mass, p_min, morris_mu):
+def sph_stress(n, method, mat, rho, F, L, dt, states, materials, sigma, vol, mass, p_min,
+               morris_mu):
     """Stress and volume (m/rho) of owned SPH rows. A fluid's state is its continuity
     density: its F is set to diag(J, 1, 1) with J = rho0/rho (the Tait stress and energy
     depend on det F only; its pressure is floored at `p_min`), a solid's stress comes from
     its integrated F. A fluid whose viscosity acts pairwise (morris_mu[mat] > 0, see
     `sph_rates`; `morris_mu` may be empty) keeps the pressure alone. The material state
     restarts from `mstate_in` (the state at the step start) so that multi-stage integrators
-    commit it once. Returns the first row with a NaN or non-positive J, or -1."""
+    commit it once: `states` = (mstate_in, mstate), `materials` = (types, parameters).
+    Returns the first row with a NaN or non-positive J, or -1."""
+    mstate_in, mstate = states
+    mtypes, mparams = materials
     bad = -1
     La = np.zeros((3, 3))
     for a in range(n):

@@ -217,6 +217,17 @@ def deformation_gradient(start, index, gw0, vol0, x, X0, dim, F):
 
 
 @njit
+def volumes_from_F(F, vol0, mass, J, vol, rho):
+    """J = det F, the current volume V = J V0 and density m / V of every row (one pass;
+    numpy's batched determinant took 14 % of a plate-under-water step)."""
+    for a in range(F.shape[0]):
+        Ja = det3(F[a])
+        J[a] = Ja
+        vol[a] = Ja * vol0[a]
+        rho[a] = mass[a] / vol[a]
+
+
+@njit
 def internal_force(start, index, gw, vol, sigma, dim, f):
     """Eq. 5: particle force ``f_a = V_a T_a`` with ``T_a = -sum_b V_b sigma_b G_ba``.
 

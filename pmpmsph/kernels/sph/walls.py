@@ -25,8 +25,7 @@ def extrapolated_pressure(dim, kern, h, x, rho, sigma, gravity, w, f):
 
 
 @njit
-def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, index,
-               mtypes, mparams, gravity, no_slip, vg):
+def wall_state(smoothing, pairs, x, v, rho, sigma, method, mat, materials, gravity, no_slip, vg):
     """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
     p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
     rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I + tau~ with
@@ -38,6 +37,11 @@ def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, inde
     or +v~ (free slip), v~ = sum_f v_f W_wf / sum_f W_wf.
     Over half neighbour lists (each pair once), the sums gathered for the wall end of every
     wall-fluid pair; a halo wall is left to its owner (then refreshed in the halo)."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
+    mtypes, mparams = materials
+    dim = len(dim_tag)
+    kern = len(kern_tag) - 1
     sw = np.zeros(n_query)
     ps = np.zeros(n_query)
     vt = np.zeros((n_query, 3))
@@ -83,8 +87,7 @@ def wall_state(dim, kern, h, n_query, x, v, rho, sigma, method, mat, start, inde
 
 
 @njit
-def mirror_pressure(dim, kern, h, n_query, x, rho, sigma, mat, fluid, start, index, gravity,
-                    pw):
+def mirror_pressure(smoothing, pairs, x, rho, sigma, mat, fluid, gravity, pw):
     """The fluid pressure at owned solid rows next to a fluid of another material, as at a
     dummy wall (Adami et al. 2012, eq. 27, static body):
         p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf
@@ -95,6 +98,10 @@ def mirror_pressure(dim, kern, h, n_query, x, rho, sigma, mat, fluid, start, ind
     depth below the face, and a float rides high by a fraction of a spacing (docs/floats.md).
     Over half neighbour lists, as `wall_state`; a halo row is left to its owner (then
     refreshed in the halo). The body's own acceleration (eq. 27's -a_w) is left out."""
+    dim_tag, kern_tag, h = smoothing
+    n_query, start, index = pairs
+    dim = len(dim_tag)
+    kern = len(kern_tag) - 1
     sw = np.zeros(n_query)
     for w in range(n_query):
         pw[w] = 0.0

@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from ...kernels.partition import column_extent
+from ...kernels.mpm.views import grid_layout
 
 
 class Grid:
@@ -70,6 +71,9 @@ class Grid:
         #: the domain and the band around it in which particles may be (one cell outside)
         self.lo = self.global_origin - self.dx
         self.hi = np.array(spec.upper) + self.dx
+        #: all of the above the transfer kernels read, as one bundle
+        self.layout = grid_layout(self.node0, self.offset, self.inv_dx, self.strides, self.lo,
+                                 self.hi)
 
     def fold_periodic(self, arrays, combine=np.add):
         """Make the grid periodic along `folded` (axes whose wrap is inside the rank): padded

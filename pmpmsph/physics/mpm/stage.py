@@ -21,6 +21,8 @@ from ...kernels.mpm.contact import contact_normals, multi_field_contact, surface
 from ...kernels.coupling import gather_increment, grid_force_kick
 from ...kernels.mpm.transfers import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
 from ...kernels.mpm.affine import g2p_affine, p2g_affine
+from ...kernels.mpm.views import (NO_AFFINE, gather_options, gather_points, material_table,
+                                  scatter_points)
 from ...kernels.partition import cell_keys
 from ...kernels.mpm.shape_functions.registry import shape_named
 from ...kernels.mpm.shapes import CPDI, cpdi_reach, static_tags
@@ -77,6 +79,8 @@ class MPMStage:
         used = {list(case.materials).index(b.material) for b in case.bodies
                 if b.method == "mpm" or case.regions}
         self.mat_tag = material_tag(self.mtypes[sorted(used)])
+        self.materials = material_table(self.mat_tag, self.mtypes, self.mparams)
+        self.max_reach = float(case.mpm.cpdi_reach)  # (CPDI's largest domain, in cells)
         self.pic_tag = (0,) if self.flip == 0.0 else ()  # PIC, for `kernels.mpm.transfers.g2p`
         # PIC-USL without damping needs only the updated nodal velocity, so P2G scatters
         # p + dt f into the momentum (one scatter instead of two, as Taichi's mpm88 does)
@@ -216,26 +220,23 @@ class MPMStage:
                 if hi == lo and lo > 0:
                     continue
                 sigma = p["sigma"][lo:hi] if stress else self._zero_stress(hi - lo)
-                if stress and self.affine:  # the MPM rows (the rows that carry C)
-                    p2g_affine(*self.tags, self.mls, p["x"][lo:hi], p["v"][lo:hi],
-                               p["C"][lo:hi], p["mass"][lo:hi], p["vol"][lo:hi], sigma,
-                               None if fext is None else fext[lo:hi],
-                               None if lp is None else lp[lo:hi],
-                               None if F is None else F[lo:hi],
-                               None if pfield is None else pfield[lo:hi], g.node0, g.offset,
-                               g.inv_dx, g.strides, g.mass, g.mom,
-                               g.force if force and not fold else None,
-                               g.mgrad if self.multi else None,
-                               dt if fold and force else None)
-                    continue
-                p2g(*self.tags, p["x"][lo:hi], p["v"][lo:hi], p["mass"][lo:hi],
-                    p["vol"][lo:hi], sigma, None if fext is None else fext[lo:hi],
-                    None if lp is None else lp[lo:hi], None if F is None else F[lo:hi],
-                    None if pfield is None else pfield[lo:hi], g.node0, g.offset,
-                    g.inv_dx, g.strides, g.mass, g.mom,
-                    g.force if force and not fold else None,
-                    g.mgrad if self.multi else None,
-                    dt if fold and force else None)
+                affine = stress and self.affine  # (the MPM rows: the rows that carry C)
+                points = scatter_points(p["x"][lo:hi], p["v"][lo:hi], p["mass"][lo:hi],
+                                       p["vol"][lo:hi], sigma,
+                                       p["C"][lo:hi] if affine else NO_AFFINE)
+                # the optional inputs, positionally (fext, lp, F, pfield, gforce, gmgrad,
+                # force_dt): None where the scene has none
+                optional = (None if fext is None else fext[lo:hi],
+                            None if lp is None else lp[lo:hi],
+                            None if F is None else F[lo:hi],
+                            None if pfield is None else pfield[lo:hi],
+                            g.force if force and not fold else None,
+                            g.mgrad if self.multi else None,
+                            dt if fold and force else None)
+                if affine:
+                    p2g_affine(self.tags, self.mls, points, g.layout, g.mass, g.mom, *optional)
+                else:
+                    p2g(self.tags, points, g.layout, g.mass, g.mom, *optional)
         sums = [g.mass, g.mom] + ([g.force] if with_force and not fold else [])
         if self.multi:
             sums.append(g.mgrad)
@@ -269,9 +270,9 @@ class MPMStage:
         if gather:
             p = self.p
             with self.timers.phase("g2p"):
-                gather_increment(*self.tags, self.n_stress, self.n_p2g, p["x"], p["v"],
-                                 p["lp"] if "lp" in p else None, p["body"], dvc, g.node0,
-                                 g.offset, g.inv_dx, g.strides)
+                gather_increment(self.tags, self.n_stress, self.n_p2g, p["x"], p["v"],
+                                 g.layout, dvc, lp=p["lp"] if "lp" in p else None,
+                                 pfield=p["body"])
         # (the ghosts hold the full nodal mass and force too, from `GridHalo.sum`)
         if with_force:
             self.interface.after_grid_forces(self, dt)
@@ -323,11 +324,10 @@ class MPMStage:
         _, lp, _, pfield, _, _ = self._optional(b)
         Fd = self._domain_F(b)
         with self.timers.phase("g2p"):
-            grid_force_kick(*self.tags, p["x"][a:b], p["v"][a:b],
-                            lp[a:b] if lp is not None else None,
-                            Fd[a:b] if Fd is not None else None,
-                            pfield[a:b] if pfield is not None else None, g.mass, g.force,
-                            g.node0, g.offset, g.inv_dx, g.strides, dt, self.mass_cutoff)
+            grid_force_kick(self.tags, p["x"][a:b], p["v"][a:b], g.layout, g.mass, g.force,
+                            dt, self.mass_cutoff, lp=lp[a:b] if lp is not None else None,
+                            Fdom=Fd[a:b] if Fd is not None else None,
+                            pfield=pfield[a:b] if pfield is not None else None)
 
     def _g2p(self, dt, kinematics, deformation):
         g, p = self.grid, self.p
@@ -337,17 +337,19 @@ class MPMStage:
         with self.timers.phase("g2p"):
             if kinematics and self.affine:  # v, C, x (and for USL the gradient L)
                 Lp = self._gradients(n) if deformation else None
-                bad = g2p_affine(*self.tags, self.mls, p["x"][:n], p["v"][:n], p["C"][:n], lp,
-                                 self._domain_F(n), pfield, g.vel, g.node0, g.offset,
-                                 g.inv_dx, g.strides, dt, g.lo, g.hi, Lp)
+                bad = g2p_affine(self.tags, self.mls, p["x"][:n], p["v"][:n], p["C"][:n],
+                                 g.layout, g.vel, dt, lp, self._domain_F(n), pfield, Lp)
             if deformation or blend:  # (with Lp, F and sigma from it: the grid is not read)
                 bad2, signal = g2p(
-                    *self.tags, self.mat_tag, self.pic_tag, p["x"][:n], p["v"][:n],
-                    p.deformation(n) if deformation else None, p["sigma"][:n], p["vol"][:n],
-                    p["vol0"][:n], lp, self._domain_F(n), pfield, p["mat"][:n], self.mtypes,
-                    self.mparams, mstate, pre, g.vel, g.dv if blend else None, g.node0,
-                    g.offset, g.inv_dx, g.strides, dt, self.flip, g.lo, g.hi,
-                    float(self.case.mpm.cpdi_reach), self.want_signal, Lp)
+                    self.tags,
+                    gather_points(p["x"][:n], p["v"][:n], p["sigma"][:n], p["vol"][:n],
+                                 p["vol0"][:n], p["mat"][:n], mstate),
+                    self.materials, g.layout,
+                    gather_options(dt, self.flip, self.pic_tag, self.max_reach,
+                                  self.want_signal),
+                    g.vel, gdv=g.dv if blend else None,
+                    F=p.deformation(n) if deformation else None, lp=lp,
+                    Fdom=self._domain_F(n), pfield=pfield, prestress=pre, Lp=Lp)
                 bad = bad if bad >= 0 else bad2
         # max (c + |v|) of the owned rows, valid when this pass has the final velocities
         # too: USL's single pass and MUSL's second; after USF's first pass v changes again

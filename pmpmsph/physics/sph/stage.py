@@ -25,6 +25,8 @@ import numpy as np
 from ...codes import SPH
 from ...kernels.neighbours import moved_beyond, neighbour_lists
 from ...kernels.sph.rates import sph_rates
+from ...kernels.sph.views import (pair_lists, pair_rows, rate_options, rate_terms, rates,
+                                  shift_fields, smoothing_of, sph_state)
 from ...kernels.sph.stress import pair_stress, sound_speeds, sph_stress, sync_ghost_velocity
 from ...kernels.sph.artificial_stress import artificial_stress
 from ...kernels.sph.correction import correction_matrices
@@ -139,7 +141,8 @@ class SPHStage:
         self.hourglass = spec.hourglass if spec.formulation == "updated" else 0.0
         # its fit, linear or quadratic (kernels/sph/hourglass_quadratic.py)
         fit = HOURGLASS_FITS[spec.hourglass_fit]
-        self._fit, self._fit_forces = fit.fit, fit.forces
+        self._fit_pairs, self._fit, self._fit_forces = fit.pairs, fit.fit, fit.forces
+        self._control, self._control_of = None, None  # (`_control_pairs`)
         # per material: a fluid (Tait) meets a solid of another material through the mirror
         # pair of kernels/sph/rates.py's sph_rates
         self.fluid = np.array([m.fluid for m in mats], np.bool_)
@@ -247,17 +250,11 @@ class SPHStage:
                 sound_speeds(self.dim, p.n_total, p.with_halo("method"), p.with_halo("mat"),
                              p.with_halo("rho"), p.with_halo("F"), self.mtypes, self.mparams,
                              p.with_halo("cs"))
-            vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
-                      p.with_halo("v"),
-                      vg, p.with_halo("mass"), p.with_halo("rho"), p.with_halo("S"),
-                      p.with_halo("cs"), p.with_halo("method"), p.with_halo("mat"),
-                      self.start, self.index, 0.0,
-                      0.0, False, np.zeros((0, 6)), 1.0, 1.0, self.gravity, 0.0,
-                      p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"), False, True,
-                      np.zeros((0, self.dim)), False, self.corr_tag, self._B(), self.fluid,
-                      np.zeros((0, self.dim)), *self._diffusion(), split=self.split,
-                      liu=self._liu())
+            # drho and L only, without the artificial stress
+            sph_rates(self._smoothing(), self._pairs(n), self._pair_rows(),
+                      self._options(want_force=False, want_fsi=False),
+                      self._terms(R=None, pw=None, clamped=None),
+                      rates(p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L")))
         self._restore_ghosts()
 
     def _density_gradient(self):
@@ -269,10 +266,9 @@ class SPHStage:
         n = p.n_owned
         self._M = rows_at_least(self._M, n)
         with self.timers.phase("sph"):
-            density_gradient(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+            density_gradient(self._smoothing(), self._pairs(n), p.with_halo("x"),
                              p.with_halo("mass"), p.with_halo("rho"), p.with_halo("method"),
-                             p.with_halo("mat"), self.dcoef, self.start, self.index, self._M,
-                             p.with_halo("gradrho"))
+                             p.with_halo("mat"), self.dcoef, self._M, p.with_halo("gradrho"))
         if self.halo_enabled:
             with self.timers.phase("halo"):
                 self.halo.refresh(("gradrho",))
@@ -287,10 +283,14 @@ class SPHStage:
         self._M = rows_at_least(self._M, n)
         with self.timers.phase("sph"):
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            shifting_state(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"), vg,
+            shifting_state(self._smoothing(), self._pairs(n), p.with_halo("x"), vg,
                            p.with_halo("mass"), p.with_halo("rho"), p.with_halo("method"),
-                           p.with_halo("mat"), self.fluid, self.start, self.index, self._M,
-                           p["gradc"], p["lam"], p["gradv"])
+                           p["mat"], self.fluid, self._M, self._shifting())
+
+    def _shifting(self):
+        """Particle shifting's fields of the owned rows (`shift_fields`)."""
+        p = self.p
+        return shift_fields(p["gradc"], p["lam"], p["gradv"])
 
     def _gradrho_owned(self):
         """delta-SPH's density gradients of the owned rows (none without delta-SPH)."""
@@ -304,8 +304,36 @@ class SPHStage:
             return self.dcoef, None
         return self.dcoef, self.p.with_halo("gradrho")
 
+    def _smoothing(self):
+        return smoothing_of(self.dim_tag, self.kern_tag, self.h)
+
+    def _pairs(self, n):
+        """The owned rows' half neighbour lists (kernels/sph/views.py `pair_lists`)."""
+        return pair_lists(n, self.start, self.index)
+
+    def _pair_rows(self):
+        """The rows `sph_rates` reads (kernels/sph/views.py `pair_rows`), owned and halo."""
+        p = self.p
+        vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
+        return pair_rows(p.with_halo("x"), p.with_halo("v"), vg, p.with_halo("mass"),
+                        p.with_halo("rho"), p.with_halo("S"), p.with_halo("cs"),
+                        p.with_halo("method"), p.with_halo("mat"))
+
+    def _options(self, want_force, want_fsi):
+        spec = self.spec
+        return rate_options(self.corr_tag, self.fluid, self.gravity, spec.damping,
+                           spec.av_alpha, spec.av_beta, want_force, self.want_L or not
+                           want_force, want_fsi, self.split)
+
+    def _terms(self, R, pw, clamped):
+        """The optional terms of `sph_rates` this scene has (`rate_terms`)."""
+        dcoef, gradrho = self._diffusion()
+        return rate_terms(self.dim, R=R, as_n=self.spec.artificial_stress_exponent,
+                          w_dp=self.w_dp, B=self._B(), liu=self._liu(), dcoef=dcoef,
+                          gradrho=gradrho, morris_mu=self.morris_mu, pw=pw, clamped=clamped)
+
     def _B(self):
-        return self.p.with_halo("B") if self.corr and not self.liu else np.zeros((0, 3, 3))
+        return self.p.with_halo("B") if self.corr and not self.liu else None
 
     def _liu(self):
         return self.p.with_halo("liu") if self.liu else None
@@ -328,10 +356,10 @@ class SPHStage:
             self._sums = rows_at_least(self._sums, n)
             method = p.with_halo("method")
             with self.timers.phase("sph"):
-                liu_coefficients(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+                liu_coefficients(self._smoothing(), self._pairs(n), p.with_halo("x"),
                                  p.with_halo("mass"), p.with_halo("rho"), method,
-                                 p.with_halo("mat"), self._liu_rows(n), self.start,
-                                 self.index, self._sums, p.with_halo("liu"))
+                                 p.with_halo("mat"), self._liu_rows(n), self._sums,
+                                 p.with_halo("liu"))
             if halo and self.halo_enabled:
                 with self.timers.phase("halo"):
                     self.halo.refresh(("liu",))
@@ -374,13 +402,28 @@ class SPHStage:
         n = p.n_owned
         self._A = rows_at_least(self._A, n)
         with self.timers.phase("sph"):
-            self._fit(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
-                          p.with_halo("X0"), p.with_halo("mass"), p.with_halo("rho"),
-                          p.with_halo("method"), p.with_halo("mat"), self.fluid, self.start,
-                          self.index, self._A, p.with_halo("Fh"))
+            self._fit(self._smoothing(), self._pairs(n),
+                      self._control_pairs(n, self.start, self.index), p.with_halo("u"),
+                      p.with_halo("X0"), p.with_halo("mass"), p.with_halo("rho"),
+                      p.with_halo("method"), p.with_halo("mat"), self.fluid, self._A,
+                      p.with_halo("Fh"))
         if self.halo_enabled:
             with self.timers.phase("halo"):
                 self.halo.refresh(("Fh",))
+
+    def _control_pairs(self, n, start, index):
+        """The hourglass control's pairs and weights over these half lists
+        (`HourglassFit.pairs`). They depend on the reference positions and the lists only,
+        so they are made once per list (a rebuilt list is a new array) and not twice an
+        evaluation (the fit and the forces each made them: 40 % of the control's cost)."""
+        if self._control_of is None or self._control_of[0] is not start \
+                or self._control_of[1] != n:
+            p = self.p
+            self._control = self._fit_pairs(self.dim, self.kern, self.h, n, p.with_halo("X0"),
+                                            p.with_halo("method"), p.with_halo("mat"),
+                                            self.fluid, start, index)
+            self._control_of = (start, n)
+        return self._control
 
     def _need_rebuild(self):
         """Collective: rebuild if the rows changed or a particle moved half the skin."""
@@ -424,16 +467,15 @@ class SPHStage:
             with t.phase("sph"):
                 sync_ghost_velocity(nt, p.with_halo("method"), p.with_halo("v"),
                                     p.with_halo("vg"))
-                wall_state(self.dim, self.kern, self.h, n, x, p.with_halo("v"),
-                           p.with_halo("rho"), p.with_halo("sigma"),
-                           p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
-                           self.mtypes, self.mparams, self.gravity, self.no_slip,
-                           p.with_halo("vg"))
+                wall_state(self._smoothing(), self._pairs(n), x, p.with_halo("v"),
+                           p.with_halo("rho"), p.with_halo("sigma"), p.with_halo("method"),
+                           p.with_halo("mat"), (self.mtypes, self.mparams), self.gravity,
+                           self.no_slip, p.with_halo("vg"))
         if "pw" in p:  # (after the walls: a wall of a solid material is a solid row too)
             with t.phase("sph"):
-                mirror_pressure(self.dim, self.kern, self.h, n, x, p.with_halo("rho"),
+                mirror_pressure(self._smoothing(), self._pairs(n), x, p.with_halo("rho"),
                                 p.with_halo("sigma"), p.with_halo("mat"), self.fluid,
-                                self.start, self.index, self.gravity, p.with_halo("pw"))
+                                self.gravity, p.with_halo("pw"))
         derived = (("rho", "sigma", "vg") if "vg" in p else ()) + (("pw",) if "pw" in p else ())
         if derived and self.halo_enabled:
             with t.phase("halo"):
@@ -455,26 +497,21 @@ class SPHStage:
                 p.with_halo("S")[held] = 0.0
                 if self.use_as:
                     R[held] = 0.0
-            vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
-            sph_rates(self.dim_tag, self.kern_tag, self.h, n, x, p.with_halo("v"), vg,
-                      p.with_halo("mass"), rho, p.with_halo("S"), p.with_halo("cs"),
-                      p.with_halo("method"), p.with_halo("mat"), self.start, self.index,
-                      self.spec.av_alpha,
-                      self.spec.av_beta, self.use_as, R, self.spec.artificial_stress_exponent,
-                      self.w_dp, self.gravity, self.spec.damping, p.with_halo("acc"),
-                      p.with_halo("drho"), p.with_halo("L"), True, self.want_L,
-                      p.with_halo("fsi") if "fsi" in p else np.zeros((0, self.dim)),
-                      "fsi" in p, self.corr_tag, self._B(), self.fluid,
-                      p.with_halo("fcpl") if "fcpl" in p else np.zeros((0, self.dim)),
-                      *self._diffusion(), self.morris_mu, self.split,
-                      p.with_halo("pw") if "pw" in p else None, self._liu(),
-                      None if self._mirror is None else self._mirror.held_rows())
+            sph_rates(self._smoothing(), self._pairs(n), self._pair_rows(),
+                      self._options(want_force=True, want_fsi="fsi" in p),
+                      self._terms(R=R if self.use_as else None,
+                                  pw=p.with_halo("pw") if "pw" in p else None,
+                                  clamped=None if self._mirror is None
+                                  else self._mirror.held_rows()),
+                      rates(p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"),
+                            p.with_halo("fsi") if "fsi" in p else None,
+                            p.with_halo("fcpl") if "fcpl" in p else None))
             if self.hourglass > 0.0:
-                self._fit_forces(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("u"),
-                                 p.with_halo("X0"), p.with_halo("Fh"), p.with_halo("mass"),
-                                 rho, p.with_halo("cs"), p.with_halo("method"),
-                                 p.with_halo("mat"), self.fluid, self.start, self.index,
-                                 self.hourglass, p.with_halo("acc"))
+                self._fit_forces(self._smoothing(), self._pairs(n),
+                                 self._control_pairs(n, self.start, self.index),
+                                 p.with_halo("u"), p.with_halo("X0"), p.with_halo("Fh"),
+                                 p.with_halo("mass"), rho, p.with_halo("cs"), self.hourglass,
+                                 p.with_halo("acc"))
         if self._mirror is not None:  # the ghosts' forces to their partners
             self._mirror.hand_back(p["acc"], self.gravity[: self.dim], self.spec.damping)
         if self.constraint is not None:
@@ -489,7 +526,7 @@ class SPHStage:
         n = p.n_owned
         with self.timers.phase("sph"):
             return sph_stress(n, p["method"], p["mat"], p["rho"], p["F"], p["L"], dt,
-                              mstate_in, self._mstate(n), self.mtypes, self.mparams,
+                              (mstate_in, self._mstate(n)), (self.mtypes, self.mparams),
                               p["sigma"], p["vol"], p["mass"], self.spec.pressure_min,
                               np.zeros(0) if self.morris_mu is None else self.morris_mu)
 
@@ -545,8 +582,8 @@ class SPHStage:
             first_outside(self.dim, n, p["x"], self.lo, self.hi)
             if self.shift_coef > 0.0:
                 shift_positions(self.dim_tag, n, p["method"], p["mat"], self.fluid, p["x"],
-                                p["v"], p["gradc"], p["lam"], p["gradv"], p["rho"],
-                                self._gradrho_owned(), self.shift_coef, 0.0, 1.0)
+                                p["v"], p["rho"], self._gradrho_owned(), self._shifting(),
+                                self.shift_coef, 0.0, 1.0)
         finally:
             self.halo_enabled = True
             self.evaluated = False
@@ -559,9 +596,10 @@ class SPHStage:
         p = self.p
         n = p.n_owned
         with self.timers.phase("integrate"):
-            advance(self.dim_tag, n, p["method"], c0, p["x_n"], p["v_n"], p["rho_n"],
-                    p["F_n"], c1, dtc, p["x"], p["v"], p["rho"], p["F"], p["acc"],
-                    p["drho"], p["L"], save, self.want_L)
+            advance(self.dim_tag, n, p["method"],
+                    sph_state(p["x_n"], p["v_n"], p["rho_n"], p["F_n"]),
+                    sph_state(p["x"], p["v"], p["rho"], p["F"]),
+                    rates(p["acc"], p["drho"], p["L"]), c0, c1, dtc, save, self.want_L)
 
     def _drift(self, n, dt):
         """x += dt v over the owned SPH rows, and the hourglass control's displacement
@@ -593,8 +631,8 @@ class SPHStage:
         if self.shift_coef > 0.0 and bad < 0:
             with self.timers.phase("integrate"):
                 shift_positions(self.dim_tag, n, p["method"], p["mat"], self.fluid, p["x"],
-                                p["v"], p["gradc"], p["lam"], p["gradv"], p["rho"],
-                                self._gradrho_owned(), self.shift_coef, dt, self.spec.spacing)
+                                p["v"], p["rho"], self._gradrho_owned(), self._shifting(),
+                                self.shift_coef, dt, self.spec.spacing)
         if len(self.moving_walls):  # prescribed motion: x += dt v_wall, after the fluid's
             moving = np.isin(p["body"][:n], self.moving_walls)
             p["x"][:n][moving] += dt * p["v"][:n][moving]

@@ -24,8 +24,9 @@ from ...kernels.sph.hourglass_quadratic import HOURGLASS_FITS
 from ...kernels.sph.stress import sound_speeds, sph_stress_all
 from ...kernels.sph.integrate import add_scaled, first_outside
 from ...kernels.sph.kernel_functions import SUPPORT
+from ...kernels.sph.views import pair_lists, smoothing_of
 from ...kernels.sph.tlsph import (deformation_gradient, first_piola, internal_force,
-                             kernel_correction, velocity_gradient)
+                                   kernel_correction, velocity_gradient, volumes_from_F)
 from ...parallel.particle_halo import ParticleHalo
 from ...particles import FieldSpec
 from ..scratch import rows_at_least
@@ -190,9 +191,8 @@ class TLSPHStage(SPHStage):
             if not self.rate:
                 deformation_gradient(start0, index0, gw0, vol0, x, p.with_halo("X0"),
                                      self.dim, F)
-            J = np.linalg.det(F)
-            vol[:] = J * vol0
-            p.with_halo("rho")[:] = p.with_halo("mass") / vol
+            J = np.empty(nt)
+            volumes_from_F(F, vol0, p.with_halo("mass"), J, vol, p.with_halo("rho"))
             if self.others is not None:  # (rows of other materials have F restored after)
                 J[self.others] = 1.0
             inverted = np.nonzero(~(J[:n] > 0))[0]  # owned rows only: halo rows are their
@@ -247,7 +247,8 @@ class TLSPHStage(SPHStage):
         plate's thickness)."""
         p, t = self.p, self.timers
         n, nt = p.n_owned, p.n_total
-        start, index = self.ref_half
+        smoothing = smoothing_of(self.dim_tag, self.kern_tag, self.h)
+        pairs = pair_lists(n, *self.ref_half)
         X0, rho = p.with_halo("X0"), p.with_halo("rho")
         method, mat, mass = p.with_halo("method"), p.with_halo("mat"), p.with_halo("mass")
         u = p.with_halo("x") - X0
@@ -256,14 +257,14 @@ class TLSPHStage(SPHStage):
         with t.phase("sph"):
             sound_speeds(self.dim, nt, method, mat, rho, p.with_halo("F"), self.mtypes,
                          self.mparams, cs)
-            self._fit(self.dim_tag, self.kern_tag, self.h, n, u, X0, mass, rho, method,
-                          mat, self.fluid, start, index, self._A, p.with_halo("Fh"))
+            control = self._control_pairs(n, *self.ref_half)
+            self._fit(smoothing, pairs, control, u, X0, mass, rho, method, mat, self.fluid,
+                      self._A, p.with_halo("Fh"))
         if self.halo_enabled and self.dist.size > 1:
             with t.phase("halo"):
                 self.halo.refresh(("Fh",))
         with t.phase("sph"):
-            self._fit_forces(self.dim_tag, self.kern_tag, self.h, n, u, X0, p.with_halo("Fh"),
-                             mass, rho, cs, method, mat, self.fluid, start, index,
+            self._fit_forces(smoothing, pairs, control, u, X0, p.with_halo("Fh"), mass, rho, cs,
                              self.hourglass, acc)
 
     def initialise(self):
