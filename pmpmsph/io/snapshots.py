@@ -184,17 +184,20 @@ class SnapshotWriter:
             f.create_group(TOPOLOGY)
 
     def _open_append(self, after_step):
-        """Continue an existing file: drop snapshots after `after_step`, carry on numbering."""
+        """Continue an existing file: drop snapshots after `after_step`, carry on numbering.
+        A kill while HDF5 flushed the file's metadata can leave a link it cannot delete
+        ("Couldn't delete link", seen once in many killed runs): then the complete snapshots
+        up to `after_step` are copied into a new file, and the damaged one is kept beside it
+        (`particles.h5.damaged`), so nothing written before the kill is lost."""
+        try:
+            self._drop_after(after_step)
+        except (KeyError, OSError) as err:
+            damaged = self.path + ".damaged"
+            log.warning("%s: %s; its complete snapshots go to a new file, the old one is kept "
+                        "as %s", self.path, err, os.path.basename(damaged))
+            self._copy_complete(after_step, damaged)
         with open_h5(self.path, "r+", libver=LIBVER) as f:
-            if f.attrs.get("format") != FORMAT or GROUP not in f:
-                raise ValueError(f"cannot append to {self.path}: not a pmpmsph snapshot file")
-            grp = f[GROUP]
-            done = complete_snapshots(grp)
-            # a half-written last group of a killed run goes, and those after `after_step`
-            keep = {i.name for i in done if after_step is None or i.step <= after_step}
-            for name in [n for n in grp.keys() if n not in keep]:
-                del grp[name]
-            done = [i for i in done if i.name in keep]
+            done = complete_snapshots(f[GROUP])
             self.index = done[-1].index + 1 if done else 0
             self.last_step = done[-1].step if done else None
             layout = f.attrs.get("layout")
@@ -205,6 +208,34 @@ class SnapshotWriter:
                 f.create_group(TOPOLOGY)
         if self.xdmf:
             write_xdmf(self.path, self.xdmf_path, cache=self._xdmf_cache)
+
+    def _keep(self, grp, after_step):
+        """The names of the complete snapshots of `grp` up to `after_step`."""
+        return [i.name for i in complete_snapshots(grp)
+                if after_step is None or i.step <= after_step]
+
+    def _drop_after(self, after_step):
+        """Delete a half-written last group of a killed run and those after `after_step`."""
+        with open_h5(self.path, "r+", libver=LIBVER) as f:
+            if f.attrs.get("format") != FORMAT or GROUP not in f:
+                raise ValueError(f"cannot append to {self.path}: not a pmpmsph snapshot file")
+            grp = f[GROUP]
+            keep = set(self._keep(grp, after_step))
+            for name in [n for n in grp.keys() if n not in keep]:
+                del grp[name]
+
+    def _copy_complete(self, after_step, damaged):
+        """Rewrite the file with its attributes, its topology and its complete snapshots up
+        to `after_step` only; the original is renamed to `damaged`."""
+        os.replace(self.path, damaged)
+        with open_h5(damaged, "r") as src, open_h5(self.path, "w", libver=LIBVER) as dst:
+            for key, value in src.attrs.items():
+                dst.attrs[key] = value
+            dst.create_group(GROUP, track_order=True)
+            if TOPOLOGY in src:
+                src.copy(src[TOPOLOGY], dst, name=TOPOLOGY)
+            for name in self._keep(src[GROUP], after_step):
+                src.copy(src[GROUP][name], dst[GROUP], name=name)
 
     def _create_rank_file(self):
         path = rank_file(self.path, self.dist.rank)

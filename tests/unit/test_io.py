@@ -103,6 +103,31 @@ def test_a_half_written_last_snapshot_is_left_out_and_dropped_on_append(dist, tm
         assert sorted(f[GROUP].keys()) == [snapshot_name(i) for i in range(3)]
 
 
+def test_a_link_hdf5_cannot_delete_leaves_a_new_file_of_the_complete_snapshots(
+        dist, tmp_path, monkeypatch):
+    """A kill while HDF5 flushed the file's metadata once left a link that the restart could
+    not delete ("Couldn't delete link (memory allocation failed for on disk image buffer)";
+    tests/parallel/test_faults.py, 2026-11-27): the restart then copies the complete
+    snapshots up to its step into a new particles file and keeps the damaged one beside it,
+    and goes on appending."""
+    path = write_run(dist, str(tmp_path / "run.h5"))
+    with h5py.File(path, "r+") as f:
+        f[GROUP].create_group(snapshot_name(3))  # a half-written group of the kill
+
+    def fails(self, after_step):
+        raise KeyError("Couldn't delete link (memory allocation failed for on disk image "
+                       "buffer)")
+
+    monkeypatch.setattr(SnapshotWriter, "_drop_after", fails)
+    with SnapshotWriter(dist, path, append=True, after_step=7) as w:
+        assert w.write(8, 0.5, make_fields(2)) == 2
+    assert [i.step for i in list_snapshots(path)] == [0, 7, 8]
+    t, step, data = read_snapshot(path, 1)
+    assert step == 7 and data["x"].shape == (COUNTS[1], 3)
+    assert [i.step for i in list_snapshots(path + ".damaged")] == STEPS  # nothing lost
+    assert read_attrs(path)["case"] == read_attrs(path + ".damaged")["case"]
+
+
 def test_large_case_text_and_readable_between_writes(dist, tmp_path):
     case = "# long case\n" + "key = 1.0\n" * 20000  # 200 kB: beyond the compact attribute limit
     path = str(tmp_path / "big.h5")
