@@ -1,6 +1,6 @@
 """`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--dim 3] [--no-peers]
 [--install-peers]`; `... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`,
-`... floats` (floats.py), `... plate` (plate_fsi.py).
+`... floats` (floats.py), `... plate` (plate_fsi.py), `... exchange CASE` (exchange.py).
 
 Prints particle-steps per second for our solver and for the peers of ../shared/peers run in
 the same invocation (machines are shared and noisy: ratios taken together hold, absolute
@@ -45,6 +45,11 @@ def main(argv: "list[str] | None" = None) -> None:
     sc.add_argument("--corun", action="store_true",
                     help="also time two independent 1-rank runs of half the scene at once "
                          "against one alone: what sharing the machine costs without MPI")
+    ex = sub.add_parser("exchange", help="time per step spent exchanging between ranks, "
+                        "per rank, on a case (run it under mpirun; exchange.py)")
+    ex.add_argument("case")
+    ex.add_argument("--steps", type=int, default=500)
+    ex.add_argument("--repeat", type=int, default=3)
     io = sub.add_parser("io", help="output overhead and write bandwidth (bench/io.py)")
     io.add_argument("--ranks", type=int, default=2)
     io.add_argument("--particles", type=int, default=1_000_000)
@@ -102,6 +107,10 @@ def main(argv: "list[str] | None" = None) -> None:
         from .accuracy import run
 
         return run(args, Distributor())
+    if args.command == "exchange":
+        from .exchange import run
+
+        return run(args)
     if args.command == "floats":
         from .floats import run
 
