@@ -16,10 +16,12 @@ import csv
 import json
 import os
 import time
+from argparse import Namespace
 
 import numpy as np
 
 from ..errors import RunError
+from ..parallel.distributor import Distributor
 from . import accuracy_report as report
 from .accuracy_1d import BAR, REVERSAL, SPRING, STRESS
 from .accuracy_2d import DAM, DISKS, PLATE
@@ -82,7 +84,7 @@ def write_csv(path, rows):
             w.writerow({k: r.get(k, "") for k in COLUMNS})
 
 
-def run(args, dist):
+def run(args: Namespace, dist: Distributor) -> int:
     chosen = [s for s in studies() if not args.scenes or s["key"] in args.scenes]
     root = dist.is_root
     if root:

@@ -5,6 +5,7 @@ step of CASE spends exchanging between ranks (the phases halo, migration and cou
 the wait for the other rank at each exchange, so a rank that arrives early counts the
 other's extra work as exchange time: these are upper bounds of the communication itself."""
 import time
+from argparse import Namespace
 
 from ..config.load import load_case_file
 from ..parallel.distributor import Distributor
@@ -34,7 +35,7 @@ def measure(path: str, steps: int, repeat: int, dist: Distributor) -> "list[dict
     return dist.gather(best)
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     dist = Distributor()
     rows = measure(args.case, args.steps, args.repeat, dist)
     if dist.is_root:

@@ -28,6 +28,7 @@ the sloshing the drop excites dies out within the run.
 import inspect
 import math
 import time
+from argparse import Namespace
 
 import numpy as np
 
@@ -45,9 +46,12 @@ BLOCKS = ((0.10, 0.06, 0.80, 0.010), (0.08, 0.04, 0.50, 0.020), (0.14, 0.04, 0.9
           (0.12, 0.06, 0.65, 0.015), (0.06, 0.05, 0.90, 0.010), (0.16, 0.08, 0.70, 0.005))
 
 
-def float_scene(combo, width=0.1, height=0.06, ratio=0.8, drop=0.01, tank=0.5, depth=0.2,
-                spacing=0.005, end=4.0, cell_spacings=None, velocity_update="apic",
-                contact="multi", shape=None, transfer="musl", absorber=0.1):
+def float_scene(combo: str, width: float = 0.1, height: float = 0.06, ratio: float = 0.8,
+                drop: float = 0.01, tank: float = 0.5, depth: float = 0.2,
+                spacing: float = 0.005, end: float = 4.0,
+                cell_spacings: "float | None" = None, velocity_update: str = "apic",
+                contact: str = "multi", shape: "str | None" = None, transfer: str = "musl",
+                absorber: float = 0.1) -> Scene:
     """The scene of one float (module doc); grid cells of `cell_spacings` spacings and the MPM
     bodies' `shape` function, by default (None) those that do best in each water: in MPM
     water quadratic B-splines on cells of 2 spacings (docs/floats.md), in SPH water GIMP on
@@ -206,7 +210,7 @@ def float_run(combo: str, dist: "Distributor | None" = None, **kw: float) -> dic
                 steps=sim.step_count, particles=sim.particles.n_owned)
 
 
-def run(args):
+def run(args: Namespace) -> int:
     """`python -m pmpmsph.bench floats`: every block of BLOCKS in every combination; a table
     and `<out>/floats.csv`."""
     combos = args.combos or COMBOS

@@ -120,7 +120,8 @@ def worker(argv):
     return 0
 
 
-def run(ranks=2, particles=1_000_000, steps=200, every=100, out="bench_results"):
+def run(ranks: int = 2, particles: int = 1_000_000, steps: int = 200, every: int = 100,
+        out: str = "bench_results") -> dict:
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     launcher = os.environ.get("PMPMSPH_MPIRUN", os.path.join(root, "scripts", "mpirun") + " -n")
     os.makedirs(out, exist_ok=True)

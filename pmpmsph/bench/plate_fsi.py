@@ -21,10 +21,13 @@ of its periods, 2 pi sqrt(w / g) = 0.13 s. `python -m pmpmsph.bench plate` runs 
 """
 import math
 import time
+from argparse import Namespace
+from typing import Callable
 
 import numpy as np
 
 from ..scene_api import Scene
+from ..parallel.distributor import Distributor
 from . import write_rows
 
 RHO_WATER = 1000.0
@@ -52,9 +55,11 @@ def plate_modulus(span, thickness, q, nu, ratio=0.01):
     return q * span**4 * 12.0 * (1.0 - nu**2) / (384.0 * ratio * span * thickness**3)
 
 
-def water_on_plate(combo="mpm_plate", spacing=0.005, span=0.4, thickness=0.02, depth=0.1,
-                   rho_plate=7800.0, nu=0.3, damping=40.0, end=0.6, clamp_cells=2,
-                   hourglass=None):
+def water_on_plate(combo: str = "mpm_plate", spacing: float = 0.005, span: float = 0.4,
+                   thickness: float = 0.02, depth: float = 0.1, rho_plate: float = 7800.0,
+                   nu: float = 0.3, damping: float = 40.0, end: float = 0.6,
+                   clamp_cells: int = 2, hourglass: "float | None" = None
+                   ) -> "tuple[Scene, dict]":
     """The scene, and the reference dict (q, E, w_bending, w_shear). `hourglass`: the SPH
     plate's `[sph] hourglass` (None: 0 for the total-Lagrangian plate, which needs none with
     mirror clamps, 2 with the quadratic fit for the updated one, whose columns pair up
@@ -158,7 +163,9 @@ def start_heights(sim):
     return sim.dist.max_array(y0)
 
 
-def plate_run(combo="mpm_plate", on_sample=None, sample_every=0.01, dist=None, **kw):
+def plate_run(combo: str = "mpm_plate", on_sample: "Callable | None" = None,
+              sample_every: float = 0.01, dist: "Distributor | None" = None,
+              **kw: float) -> "tuple[np.ndarray, np.ndarray, dict]":
     """Run the scene; returns (times, mid-span deflections, reference dict)."""
     sc, ref = water_on_plate(combo, **kw)
     sim = sc.simulation(dist=dist) if dist is not None else sc.simulation()
@@ -189,7 +196,7 @@ def settled(times, w, window=0.1):
     return mean, float((last.max() - last.min()) / abs(mean))
 
 
-def run(args):
+def run(args: Namespace) -> int:
     """`python -m pmpmsph.bench plate`: each spacing of each combination; a table and
     `<out>/plate.csv`."""
     rows = []
