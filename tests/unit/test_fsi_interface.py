@@ -37,7 +37,7 @@ def _rates(x, v, mass, rho, p, method, mat, fluid, h, gravity=None):
               pair_rows(x, v, v, mass, rho, S, np.ones(n), method, mat),
               rate_options((), fluid, np.zeros(3), damping=0.0, av_alpha=0.0, av_beta=0.0,
                           want_force=True, want_L=False, want_fsi=True, split=False),
-              rate_terms(2, as_n=4.0, pw=pw), rates(acc, drho, L, fsi=fsi))
+              rate_terms(as_n=4.0, pw=pw), rates(acc, drho, L, fsi=fsi))
     return acc, drho, fsi
 
 

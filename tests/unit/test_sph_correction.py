@@ -48,7 +48,7 @@ def _rates(x, v, mass, rho, sigma, h, corr):
               rate_options((0,) if corr else (), np.zeros(1, np.bool_), np.zeros(3),
                           damping=0.0, av_alpha=0.0, av_beta=0.0, want_force=True,
                           want_L=True, want_fsi=False, split=False),
-              rate_terms(dim, as_n=4.0, B=B), rates(acc, drho, L))
+              rate_terms(as_n=4.0, B=B), rates(acc, drho, L))
     return acc, drho, L, B
 
 

@@ -251,7 +251,7 @@ def test_kirsch_field_velocity_gradient_at_the_hole_surface():
                   rate_options((0,) if corr else (), np.zeros(1, np.bool_), np.zeros(3),
                               damping=0.0, av_alpha=0.0, av_beta=0.0, want_force=False,
                               want_L=True, want_fsi=False, split=False),
-                  rate_terms(2, B=B), rates(np.zeros((n, 2)), np.zeros(n), L))
+                  rate_terms(B=B), rates(np.zeros((n, 2)), np.zeros(n), L))
         e = 0.5 * (L + np.transpose(L, (0, 2, 1)))
         syy = lam * (e[:, 0, 0] + e[:, 1, 1]) + 2 * mu * e[:, 1, 1]
         xl, yl = x[line, 0] - C, x[line, 1] - C

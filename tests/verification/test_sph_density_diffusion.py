@@ -54,7 +54,7 @@ def _diffusion_rates(x, rho, mass, h, grad, cs=None, gravity=None):
               rate_options((), np.array([True]), gravity, damping=0.0, av_alpha=0.0,
                           av_beta=0.0, want_force=False, want_L=False, want_fsi=False,
                           split=grad is None),
-              rate_terms(2, dcoef=np.ones(1), gradrho=grad), rates(acc, drho, L))
+              rate_terms(dcoef=np.ones(1), gradrho=grad), rates(acc, drho, L))
     return drho
 
 

@@ -59,20 +59,22 @@ def rate_options(corr_tag, fluid, gravity, damping, av_alpha, av_beta, want_forc
             bool(want_force), bool(want_L), bool(want_fsi), bool(split))
 
 
-def rate_terms(dim, R=None, as_n=1.0, w_dp=1.0, B=None, liu=None, dcoef=None, gradrho=None,
+#: the empty arrays that stand for absent terms (never written; made once, not per call)
+_NO_ROWS6, _NO_MATRICES, _NO_LIU = np.zeros((0, 6)), np.zeros((0, 3, 3)), np.zeros((0, COEF))
+_NO_VALUES, _NO_VECTORS, _NO_FLAGS = np.zeros(0), np.zeros((0, 3)), np.zeros(0, np.bool_)
+
+
+def rate_terms(R=None, as_n=1.0, w_dp=1.0, B=None, liu=None, dcoef=None, gradrho=None,
                morris_mu=None, pw=None, clamped=None):
     """The optional terms of `sph_rates`, empty arrays where a scene lacks them: artificial
     stress R (rows x 6) with its exponent and W(dp); Bonet-Lok's B or Liu's coefficients;
     delta-SPH's coefficient per material and the rows' density gradients; Morris' viscosity
     per material; the fluid pressure at solid points; the rows held by mirror clamps."""
-    return (np.zeros((0, 6)) if R is None else R, float(as_n), float(w_dp),
-            np.zeros((0, 3, 3)) if B is None else B,
-            np.zeros((0, COEF)) if liu is None else liu,
-            np.zeros(0) if dcoef is None else dcoef,
-            np.zeros((0, 3)) if gradrho is None else gradrho,
-            np.zeros(0) if morris_mu is None else morris_mu,
-            np.zeros(0) if pw is None else pw,
-            np.zeros(0, np.bool_) if clamped is None else clamped)
+    return (_NO_ROWS6 if R is None else R, float(as_n), float(w_dp),
+            _NO_MATRICES if B is None else B, _NO_LIU if liu is None else liu,
+            _NO_VALUES if dcoef is None else dcoef, _NO_VECTORS if gradrho is None else gradrho,
+            _NO_VALUES if morris_mu is None else morris_mu, _NO_VALUES if pw is None else pw,
+            _NO_FLAGS if clamped is None else clamped)
 
 
 def rates(acc, drho, L, fsi=None, fcpl=None):

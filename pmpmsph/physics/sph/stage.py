@@ -252,7 +252,7 @@ class SPHStage:
                              p.with_halo("cs"))
             # drho and L only, without the artificial stress
             sph_rates(self._smoothing(), self._pairs(n), self._pair_rows(),
-                      self._options(want_force=False, want_fsi=False),
+                      self._options(want_force=False, want_L=True, want_fsi=False),
                       self._terms(R=None, pw=None, clamped=None),
                       rates(p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L")))
         self._restore_ghosts()
@@ -285,7 +285,7 @@ class SPHStage:
             vg = p.with_halo("vg") if "vg" in p else p.with_halo("v")
             shifting_state(self._smoothing(), self._pairs(n), p.with_halo("x"), vg,
                            p.with_halo("mass"), p.with_halo("rho"), p.with_halo("method"),
-                           p["mat"], self.fluid, self._M, self._shifting())
+                           p.with_halo("mat"), self.fluid, self._M, self._shifting())
 
     def _shifting(self):
         """Particle shifting's fields of the owned rows (`shift_fields`)."""
@@ -319,16 +319,16 @@ class SPHStage:
                         p.with_halo("rho"), p.with_halo("S"), p.with_halo("cs"),
                         p.with_halo("method"), p.with_halo("mat"))
 
-    def _options(self, want_force, want_fsi):
+    def _options(self, want_force, want_L, want_fsi):
         spec = self.spec
         return rate_options(self.corr_tag, self.fluid, self.gravity, spec.damping,
-                           spec.av_alpha, spec.av_beta, want_force, self.want_L or not
-                           want_force, want_fsi, self.split)
+                            spec.av_alpha, spec.av_beta, want_force, want_L, want_fsi,
+                            self.split)
 
     def _terms(self, R, pw, clamped):
         """The optional terms of `sph_rates` this scene has (`rate_terms`)."""
         dcoef, gradrho = self._diffusion()
-        return rate_terms(self.dim, R=R, as_n=self.spec.artificial_stress_exponent,
+        return rate_terms(R=R, as_n=self.spec.artificial_stress_exponent,
                           w_dp=self.w_dp, B=self._B(), liu=self._liu(), dcoef=dcoef,
                           gradrho=gradrho, morris_mu=self.morris_mu, pw=pw, clamped=clamped)
 
@@ -498,7 +498,7 @@ class SPHStage:
                 if self.use_as:
                     R[held] = 0.0
             sph_rates(self._smoothing(), self._pairs(n), self._pair_rows(),
-                      self._options(want_force=True, want_fsi="fsi" in p),
+                      self._options(want_force=True, want_L=self.want_L, want_fsi="fsi" in p),
                       self._terms(R=R if self.use_as else None,
                                   pw=p.with_halo("pw") if "pw" in p else None,
                                   clamped=None if self._mirror is None
