@@ -59,6 +59,9 @@ class ParticleSet:
         self.n_total = 0
         self.capacity = int(capacity)
         self._byte_views = {}  # (`byte_views`)
+        #: counts the changes of which particle a row holds (rows added, removed, reordered,
+        #: the halo dropped): a cache of rows found by gid is valid while it is unchanged
+        self.epoch = 0
         for spec in CORE_FIELDS:
             self.declare(spec)
 
@@ -168,6 +171,7 @@ class ParticleSet:
         for arr in self.arrays.values():
             arr[holes] = arr[movers]
         self.n_owned = self.n_total = n - k
+        self.epoch += 1
 
     def take(self, index: np.ndarray) -> None:
         """Keep only the owned rows `index`, in that order (sorting, rebuilding)."""
@@ -175,6 +179,7 @@ class ParticleSet:
         for arr in self.arrays.values():
             arr[: len(index)] = arr[index]
         self.n_owned = self.n_total = len(index)
+        self.epoch += 1
 
     def append_halo(self, values: Mapping[str, np.ndarray]) -> None:
         """Append halo copies (rows after the owned ones); fields not given get defaults."""
@@ -184,6 +189,7 @@ class ParticleSet:
     def _write_rows(self, values, n_new):
         """Write n_new rows after row n_total (defaults where `values` lacks a field)."""
         self.reserve(self.n_total + n_new)
+        self.epoch += 1
         lo, hi = self.n_total, self.n_total + n_new
         for name, spec in self.specs.items():
             arr = self.arrays[name]
@@ -194,6 +200,8 @@ class ParticleSet:
         return hi
 
     def drop_halo(self) -> None:
+        if self.n_total != self.n_owned:
+            self.epoch += 1
         self.n_total = self.n_owned
 
     def fields(self, *, migrate: Optional[bool] = None, halo: Optional[bool] = None,

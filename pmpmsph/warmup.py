@@ -52,3 +52,4 @@ def _dry_step(sim):
                          dec.lo_cell, dec.hi_cell)
     finally:
         p.n_owned, p.n_total = n_owned, n_total
+        p.epoch += 1  # (rows found by gid during the dry step were of no particles)

@@ -159,7 +159,7 @@ def test_velocity_gradient_exact_for_linear_field(dim, n, jitter):
     A, c = linear_map(dim, dim)
     v = x @ A.T + c
     L = np.full((len(x), 3, 3), np.nan)
-    velocity_gradient(start, index, gw, vol, v, dim, L)
+    velocity_gradient(np.arange(len(x)), start, index, gw, vol, v, dim, L)
     assert np.abs(L[:, :dim, :dim] - A).max() < 1e-12
     assert (L[:, dim:, :] == 0).all() and (L[:, :, dim:] == 0).all()
 
@@ -172,7 +172,7 @@ def test_deformation_gradient_exact_for_homogeneous_deformation(dim, n, jitter):
     A, c = linear_map(dim, 7 + dim)
     x = X0 @ A.T + c
     F = np.empty((len(x), 3, 3))
-    deformation_gradient(start, index, gw0, vol0, x, X0, dim, F)
+    deformation_gradient(np.arange(len(x)), start, index, gw0, vol0, x, X0, dim, F)
     expect = np.eye(3)
     expect[:dim, :dim] = A
     assert np.abs(F - expect).max() < 1e-12
@@ -201,7 +201,7 @@ def test_force_is_adjoint_of_velocity_gradient(dim, n, jitter, corrected):
     f = np.empty_like(x)
     internal_force(start, index, gw, vol, sigma, dim, f)
     L = np.empty((len(x), 3, 3))
-    velocity_gradient(start, index, gw, vol, v, dim, L)
+    velocity_gradient(np.arange(len(x)), start, index, gw, vol, v, dim, L)
     power = (v * f).sum()
     work = -(vol[:, None, None] * sigma * L).sum()
     assert power == pytest.approx(work, rel=1e-12, abs=1e-12 * np.abs(v * f).sum())
@@ -223,13 +223,14 @@ def test_total_lagrangian_force_is_adjoint_of_eq8(dim, n, jitter):
     x = X0 + 0.05 * np.sin(3 * X0[:, ::-1]) + 0.02 * rng.normal(size=X0.shape) * s
     v = rng.normal(size=X0.shape)
     F = np.empty((len(x), 3, 3))
-    deformation_gradient(start0, index0, gw0, vol0, x, X0, dim, F)
+    deformation_gradient(np.arange(len(x)), start0, index0, gw0, vol0, x, X0, dim, F)
     Fdot = np.empty_like(F)
-    deformation_gradient(start0, index0, gw0, vol0, X0 + v, X0, dim, Fdot)
+    deformation_gradient(np.arange(len(x)), start0, index0, gw0, vol0, X0 + v, X0, dim,
+                         Fdot)
     Fdot -= np.eye(3)
     sigma = stress_field(len(x), dim, 60 + dim)
     P = np.empty_like(sigma)
-    first_piola(F, sigma, P)
+    first_piola(np.arange(len(x)), F, sigma, P)
     assert np.allclose(P, np.linalg.det(F)[:, None, None] * sigma
                        @ np.linalg.inv(F).transpose(0, 2, 1), rtol=1e-12, atol=1e-12)
     f = np.empty_like(x)

@@ -55,7 +55,8 @@ def _fractions(through, correction=True):
     vol = np.ascontiguousarray(p["mass"][:n] / p["rho"][:n])
     kernel_correction(x, vol, start, index, h, 0, 2, True, wt, gw)
     G = np.zeros((n, 3, 3))
-    deformation_gradient(start, index, gw, vol, np.ascontiguousarray(x + v), x, 2, G)
+    deformation_gradient(np.arange(n), start, index, gw, vol, np.ascontiguousarray(x + v), x,
+                         2, G)
     exact = -K * (x[:, 1] - THICK / 2)
     sp = THICK / through
     mid = (np.abs(x[:, 0] - SPAN / 2) < sp) & (x[:, 0] < SPAN / 2) & (x[:, 1] < THICK / 2)

@@ -89,6 +89,7 @@ class Plate:
         self.maxwell = eta is not None
         self.X0, self.vol0, self.s, self.corner = plate_particles(n, layout)
         self.N = len(self.X0)
+        self.rows = np.arange(self.N)  # every particle is evaluated
         self.h = k_h * self.s
         self.cfl = cfl
         self.corrected = corrected
@@ -117,7 +118,8 @@ class Plate:
 
     def ref_F(self, x):
         F = np.empty((self.N, 3, 3))
-        deformation_gradient(self.start0, self.index0, self.gw0, self.vol0, x, self.X0, 2, F)
+        deformation_gradient(self.rows, self.start0, self.index0, self.gw0, self.vol0, x,
+                             self.X0, 2, F)
         return F
 
     def rates(self, x, v, F, stage_dt):
@@ -131,13 +133,13 @@ class Plate:
             current_volume(F, self.vol0, self.vol)
             self.n_degenerate += kernel_correction(x, self.vol, start, index, self.h,
                                                    self.kind, 2, self.corrected, wt, gw)
-            velocity_gradient(start, index, gw, self.vol, v, 2, self.L)
+            velocity_gradient(self.rows, start, index, gw, self.vol, v, 2, self.L)
         trial = self.state.copy()
         material_stress(self.mtype, F, self.L, stage_dt, trial, self.par, self.sigma)
         if self.force == "current":
             internal_force(start, index, gw, self.vol, self.sigma, 2, self.f)
         else:  # total-Lagrangian form: first Piola-Kirchhoff P = J sigma F^-T, reference pairs
-            first_piola(F, self.sigma, self.P)
+            first_piola(self.rows, F, self.sigma, self.P)
             internal_force(self.start0, self.index0, self.gw0, self.vol0, self.P, 2, self.f)
         return self.f / self.mass[:, None], self.L.copy()
 

@@ -29,16 +29,15 @@ from .shapes import (LINEAR, apic_d_inverse, cpdi_domain, local_layout, n_corner
                      stencil)
 
 
-@njit
-def _first_nodes(base, st, off, dim):
-    """Global index per axis of the stencil's first node, from its flat local index."""
+@njit(inline="always")
+def _first_nodes(base, st, off, dim, first):
+    """Global index per axis of the stencil's first node, from its flat local index, into
+    `first` (reused: an array made per particle and corner cost more than the stencil)."""
     rest = base
-    first = np.zeros(3)
     for a in range(dim):
         q = rest // st[a]
         rest -= q * st[a]
         first[a] = q + off[a]
-    return first
 
 
 @njit(inline="always")
@@ -79,6 +78,7 @@ def p2g_affine(tags, mls, points, layout, gmass, gmom, fext=None, lp=None, F=Non
     dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)
     X = np.zeros(3)  # the particle, in cell units from global node 0
     r = np.zeros(3)  # x_I - x_p
+    first = np.zeros(3)  # global indices of the stencil's first node
     g = np.zeros(3)
     fe = np.zeros(3)
     mom = np.zeros(3)
@@ -95,7 +95,7 @@ def p2g_affine(tags, mls, points, layout, gmass, gmom, fext=None, lp=None, F=Non
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, F, dom, p, c, origin, inv_dx, st, off, nax)
-            first = _first_nodes(base, st, off, dim)
+            _first_nodes(base, st, off, dim, first)
             for i in range(n0):
                 for j in range(n1):
                     for k in range(n2):
@@ -145,6 +145,7 @@ def g2p_affine(tags, mls, x, v, C, layout, gvel, dt, lp=None, Fdom=None, pfield=
     dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)
     X = np.zeros(3)  # the particle, in cell units from global node 0
     r = np.zeros(3)  # x_I - x_p
+    first = np.zeros(3)  # global indices of the stencil's first node
     vp = np.zeros(3)
     B = np.zeros((3, 3))
     G = np.zeros((3, 3))
@@ -166,7 +167,7 @@ def g2p_affine(tags, mls, x, v, C, layout, gvel, dt, lp=None, Fdom=None, pfield=
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, Fdom, dom, p, c, origin, inv_dx, st, off, nax)
-            first = _first_nodes(base, st, off, dim)
+            _first_nodes(base, st, off, dim, first)
             for i in range(n0):
                 for j in range(n1):
                     for k in range(n2):

@@ -114,11 +114,12 @@ def sph_stress(n, method, mat, rho, F, L, dt, states, materials, sigma, vol, mas
 
 
 @njit
-def sph_stress_all(n, mat, F, L, dt, mstate, mtypes, mparams, sigma):
-    """Stress of rows [0, n) from their F (total-Lagrangian SPH: owned and halo rows alike,
-    each with its material state restarted by the caller)."""
+def sph_stress_all(rows, mat, F, L, dt, mstate, mtypes, mparams, sigma):
+    """Stress of the `rows` from their F (total-Lagrangian SPH: owned and halo rows alike,
+    each with its material state restarted by the caller; the rows of other materials are
+    not written)."""
     La = np.zeros((3, 3))
-    for a in range(n):
+    for a in rows:
         mi = mat[a]
         for i in range(3):
             for j in range(3):

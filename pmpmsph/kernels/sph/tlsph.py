@@ -180,11 +180,12 @@ def kernel_correction(x, vol, start, index, h, kind, dim, corrected, wt, gw):
 
 
 @njit
-def velocity_gradient(start, index, gw, vol, v, dim, L):
-    """Eq. 6: ``L_a = sum_b V_b v_b (x) G_ab`` (L[a, i, j] = d v_i / d x_j) for the rows a.
+def velocity_gradient(rows, start, index, gw, vol, v, dim, L):
+    """Eq. 6: ``L_a = sum_b V_b v_b (x) G_ab`` (L[a, i, j] = d v_i / d x_j) for the `rows` a
+    (the rows of the stage's own materials; other rows are not written).
 
     ``gw``, ``vol`` of the current configuration; entries beyond dim are zero."""
-    for a in range(start.shape[0] - 1):
+    for a in rows:
         for i in range(3):
             for j in range(3):
                 L[a, i, j] = 0.0
@@ -198,12 +199,13 @@ def velocity_gradient(start, index, gw, vol, v, dim, L):
 
 
 @njit
-def deformation_gradient(start, index, gw0, vol0, x, X0, dim, F):
-    """Eq. 8 (referential): ``F_a = 1 + sum_b V0_b (u_b - u_a) (x) G0_ab``, u = x - X0.
+def deformation_gradient(rows, start, index, gw0, vol0, x, X0, dim, F):
+    """Eq. 8 (referential): ``F_a = 1 + sum_b V0_b (u_b - u_a) (x) G0_ab``, u = x - X0, for
+    the `rows` a (other rows are not written).
 
     ``start``, ``index``, ``gw0`` are the pairs and corrected-kernel gradients of the
     reference configuration (X0, V0), computed once. Components beyond dim stay identity."""
-    for a in range(start.shape[0] - 1):
+    for a in rows:
         for i in range(3):
             for j in range(3):
                 F[a, i, j] = 1.0 if i == j else 0.0
@@ -217,10 +219,10 @@ def deformation_gradient(start, index, gw0, vol0, x, X0, dim, F):
 
 
 @njit
-def volumes_from_F(F, vol0, mass, J, vol, rho):
-    """J = det F, the current volume V = J V0 and density m / V of every row (one pass;
+def volumes_from_F(rows, F, vol0, mass, J, vol, rho):
+    """J = det F, the current volume V = J V0 and density m / V of the `rows` (one pass;
     numpy's batched determinant took 14 % of a plate-under-water step)."""
-    for a in range(F.shape[0]):
+    for a in rows:
         Ja = det3(F[a])
         J[a] = Ja
         vol[a] = Ja * vol0[a]
@@ -251,10 +253,11 @@ def internal_force(start, index, gw, vol, sigma, dim, f):
 
 
 @njit
-def first_piola(F, sigma, P):
-    """``P_a = J_a sigma_a F_a^-T`` (first Piola-Kirchhoff stress), for the total-Lagrangian
-    form of eq. 5 with reference-configuration pairs (see the module docstring)."""
-    for a in range(F.shape[0]):
+def first_piola(rows, F, sigma, P):
+    """``P_a = J_a sigma_a F_a^-T`` (first Piola-Kirchhoff stress) of the `rows`, for the
+    total-Lagrangian form of eq. 5 with reference-configuration pairs (see the module
+    docstring)."""
+    for a in rows:
         # J F^-T is the cofactor matrix of F
         c00, c01, c02, c10, c11, c12, c20, c21, c22 = cofactor3(F[a])
         for i in range(3):

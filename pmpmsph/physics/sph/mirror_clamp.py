@@ -60,8 +60,10 @@ class MirrorClamps:
         self.partner_gid = None   # the partner of each ghost
         self.held_gid = None      # every held particle of a mirror clamp (stress left out)
         # of the evaluation under way (`place` to `restore`: no row moves in between): the
-        # owned rows of the ghosts and partners, the saved ghost state, the held-row mask
+        # owned rows of the ghosts and partners, the saved ghost state, the held-row mask;
+        # the rows and the mask are kept while `particles.epoch` says no row changed
         self._grow = self._prow = self._saved = self._held = None
+        self._rows_epoch = self._held_epoch = None
 
     # -- set-up ---------------------------------------------------------------------------
     def _faces(self, spec):
@@ -135,8 +137,10 @@ class MirrorClamps:
         """Put the owned ghosts at the odd image of their partners (before the halo
         exchange); `restore` puts them back at rest."""
         p = self.p
-        self._grow, self._prow = grow, prow = self._rows(self.ghost_gid, self.partner_gid)
-        self._held = None
+        if self._rows_epoch != p.epoch:
+            self._grow, self._prow = self._rows(self.ghost_gid, self.partner_gid)
+            self._rows_epoch = p.epoch
+        grow, prow = self._grow, self._prow
         mine = prow >= 0
         X0, x, v = p["X0"], p["x"], p["v"]
         sent = (np.nonzero(mine)[0], x[prow[mine]] - X0[prow[mine]], v[prow[mine]])
@@ -157,7 +161,8 @@ class MirrorClamps:
         rows, x, v = self._saved
         p["x"][rows] = x
         p["v"][rows] = v
-        held = self.held_rows()[:p.n_owned]
+        self.held_rows()
+        held = self._held_owned
         p["F"][held] = np.eye(3)
         p["sigma"][held] = 0.0
         p["vol"][held] = p["vol0"][held]
@@ -166,8 +171,11 @@ class MirrorClamps:
     def held_rows(self):
         """Mask over the rows with halo: the held particles of the clamps (their stress is
         left out of the forces); once per evaluation, after its halo exchange."""
-        if self._held is None or len(self._held) != self.p.n_total:
-            self._held = np.isin(self.p.with_halo("gid"), self.held_gid)
+        p = self.p
+        if self._held_epoch != p.epoch or len(self._held) != p.n_total:
+            self._held = np.isin(p.with_halo("gid"), self.held_gid)
+            self._held_owned = np.nonzero(self._held[:p.n_owned])[0]
+            self._held_epoch = p.epoch
         return self._held
 
     def hand_back(self, acc, gravity, damping=0.0):

@@ -133,6 +133,8 @@ class TLSPHStage(SPHStage):
         nt = p.n_total
         others = ~np.isin(p.with_halo("mat"), self.tl_materials)
         self.others = others if others.any() else None
+        # the rows this stage evaluates (F, stress, volume, ...): its own materials'
+        self.rows = np.nonzero(~others)[0] if self.others is not None else np.arange(nt)
         with self.timers.phase("neighbours"):
             start, index = self._own_pairs(*neighbour_lists(X0, nt, SUPPORT * self.h))
         with self.timers.phase("sph"):
@@ -159,42 +161,30 @@ class TLSPHStage(SPHStage):
         np.cumsum(np.bincount(rows[keep], minlength=len(start) - 1), out=kept[1:])
         return kept, index[keep]
 
-    #: the per-row state an evaluation writes, which rows of other materials keep
-    WRITTEN = ("F", "L", "sigma", "vol", "rho")
-
     def evaluate(self, dt_state=0.0):
         """Accelerations of the owned particles at the current state (and F, stress, L).
         The rows of other materials (the points of an MPM fluid in a coupled scene) keep
-        their own F, L, stress, volume, density and material state."""
-        p = self.p
+        their own F, L, stress, volume, density and material state: the kernels write
+        `self.rows` alone, and no pair joins those rows to others (`_own_pairs`)."""
         self._place_ghosts()
         self._exchange()
         self._reference()
-        if self.others is None:
-            self._evaluate(dt_state)
-        else:
-            others = self.others
-            names = self.WRITTEN + (("mstate",) if "mstate" in p else ())
-            kept = {name: p.with_halo(name)[others] for name in names}
-            self._evaluate(dt_state)
-            for name, rows in kept.items():
-                p.with_halo(name)[others] = rows
+        self._evaluate(dt_state)
         self._restore_ghosts()
 
     def _evaluate(self, dt_state):
         p, t = self.p, self.timers
         start0, index0, gw0 = self.ref
+        rows = self.rows
         nt, n = p.n_total, p.n_owned
         x, v, F = p.with_halo("x"), p.with_halo("v"), p.with_halo("F")
         vol0, vol = p.with_halo("vol0"), p.with_halo("vol")
         with t.phase("sph"):
             if not self.rate:
-                deformation_gradient(start0, index0, gw0, vol0, x, p.with_halo("X0"),
+                deformation_gradient(rows, start0, index0, gw0, vol0, x, p.with_halo("X0"),
                                      self.dim, F)
-            J = np.empty(nt)
-            volumes_from_F(F, vol0, p.with_halo("mass"), J, vol, p.with_halo("rho"))
-            if self.others is not None:  # (rows of other materials have F restored after)
-                J[self.others] = 1.0
+            J = np.ones(nt)  # (1 for the rows of other materials)
+            volumes_from_F(rows, F, vol0, p.with_halo("mass"), J, vol, p.with_halo("rho"))
             inverted = np.nonzero(~(J[:n] > 0))[0]  # owned rows only: halo rows are their
             if len(inverted) and self._bad < 0:     # owners' to report
                 self._bad = int(inverted[0])
@@ -205,11 +195,15 @@ class TLSPHStage(SPHStage):
                 wt = np.empty(len(index))
                 kernel_correction(x, vol, start, index, self.h, self.kern, self.dim,
                                   self.corrected, wt, gw)
-                velocity_gradient(start, index, gw, vol, v, self.dim, p.with_halo("L"))
+                velocity_gradient(rows, start, index, gw, vol, v, self.dim, p.with_halo("L"))
             mstate = p.with_halo("mstate") if "mstate" in p else np.zeros((nt, 0))
-            m0 = p.with_halo("mstate0") if "mstate0" in p else mstate
-            mstate[:] = m0
-            sph_stress_all(nt, p.with_halo("mat"), F, p.with_halo("L"), dt_state, mstate,
+            if "mstate0" in p:  # the own rows' state restarted from the step's start
+                m0 = p.with_halo("mstate0")
+                if self.others is None:
+                    mstate[:] = m0
+                else:
+                    mstate[rows] = m0[rows]
+            sph_stress_all(rows, p.with_halo("mat"), F, p.with_halo("L"), dt_state, mstate,
                            self.mtypes, self.mparams, p.with_halo("sigma"))
             f = p.with_halo("force")
             held = self._mirror.held_rows() if self._mirror is not None else None
@@ -220,7 +214,7 @@ class TLSPHStage(SPHStage):
                 internal_force(start, index, gw, vol, sigma, self.dim, f)
             else:
                 P = np.empty((nt, 3, 3))
-                first_piola(F, p.with_halo("sigma"), P)
+                first_piola(rows, F, p.with_halo("sigma"), P)
                 if held is not None:
                     P[held] = 0.0
                 internal_force(start0, index0, gw0, vol0, P, self.dim, f)
