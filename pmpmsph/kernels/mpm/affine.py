@@ -40,15 +40,6 @@ def _first_nodes(base, st, off, dim, first):
         first[a] = q + off[a]
 
 
-@njit(inline="always")
-def node_offset(first, i, j, k, X, dx, r):
-    """r = x_I - x_p for the node (i, j, k) of a stencil whose first node is `first` (global
-    indices per axis), the particle at X (cell units from global node 0)."""
-    r[0] = (first[0] + i - X[0]) * dx
-    r[1] = (first[1] + j - X[1]) * dx
-    r[2] = (first[2] + k - X[2]) * dx
-
-
 @njit
 def _layout(dim_tag, kind_tag, strides, offset, n_nodes, inv_dx):
     """(dim, shape kind, strides, offset, nodes per axis, dx, D^-1 of a B-spline or 0)."""
@@ -68,65 +59,113 @@ def p2g_affine(tags, mls, points, layout, gmass, gmom, fext=None, lp=None, F=Non
     The force of node I is sum_p N_I f_p - vol_p sigma_p g_I with g_I = grad N_I (APIC) or
     D^-1 N_I (x_I - x_p) (`mls`, Hu 2018 eq. 18). Arguments as `kernels.mpm.transfers.p2g`
     (`points` with C): `gforce` None and `force_dt` = dt fold the force into the momentum
-    (p + dt f).
+    (p + dt f). The particle's values are held in scalars, not scratch arrays: the scatter's
+    stores could alias an array, so its loads would be redone at every node (with the
+    scratch arrays this kernel took 1.3x the time it takes now on the floats of
+    tests/verification/test_floats_mpm_water.py). Components beyond `dim` are left out at
+    compile time, and each sum keeps the order of the per-component loops it replaces.
     """
     dim_tag, kind_tag = tags
+    dim = len(dim_tag)
     x, v, mass, vol, sigma, C = points
     origin, offset, inv_dx, strides, _, _ = layout
-    dim, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
-                                                 gmass.shape[1], inv_dx)
+    _, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
+                                               gmass.shape[1], inv_dx)
     dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)
-    X = np.zeros(3)  # the particle, in cell units from global node 0
-    r = np.zeros(3)  # x_I - x_p
     first = np.zeros(3)  # global indices of the stencil's first node
-    g = np.zeros(3)
-    fe = np.zeros(3)
-    mom = np.zeros(3)
     fld = 0
+    fe0 = fe1 = fe2 = 0.0
+    v1 = v2 = X1 = X2 = 0.0
+    c01 = c02 = c10 = c11 = c12 = c20 = c21 = c22 = 0.0
+    mom1 = mom2 = force1 = force2 = 0.0  # (components beyond dim: never written)
     for p in range(x.shape[0]):
         if pfield is not None:
             fld = pfield[p]
         if F is not None:
             cpdi_domain(dim, F, lp, p, dom)
         m = mass[p]
-        for a in range(dim):
-            X[a] = (x[p, a] - origin[a]) * inv_dx
-            fe[a] = fext[p, a] if fext is not None else 0.0
+        vo = vol[p]
+        # the particle in cell units from global node 0, its velocity, C and vol sigma
+        X0 = (x[p, 0] - origin[0]) * inv_dx
+        v0 = v[p, 0]
+        c00 = C[p, 0, 0]
+        s00, s01, s02 = vo * sigma[p, 0, 0], vo * sigma[p, 0, 1], vo * sigma[p, 0, 2]
+        s10, s11, s12 = vo * sigma[p, 1, 0], vo * sigma[p, 1, 1], vo * sigma[p, 1, 2]
+        s20, s21, s22 = vo * sigma[p, 2, 0], vo * sigma[p, 2, 1], vo * sigma[p, 2, 2]
+        if dim > 1:
+            X1 = (x[p, 1] - origin[1]) * inv_dx
+            v1 = v[p, 1]
+            c01, c10, c11 = C[p, 0, 1], C[p, 1, 0], C[p, 1, 1]
+        if dim > 2:
+            X2 = (x[p, 2] - origin[2]) * inv_dx
+            v2 = v[p, 2]
+            c02, c12, c20, c21, c22 = C[p, 0, 2], C[p, 1, 2], C[p, 2, 0], C[p, 2, 1], C[p, 2, 2]
+        if fext is not None:
+            fe0 = fext[p, 0]
+            if dim > 1:
+                fe1 = fext[p, 1]
+            if dim > 2:
+                fe2 = fext[p, 2]
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, F, dom, p, c, origin, inv_dx, st, off, nax)
             _first_nodes(base, st, off, dim, first)
             for i in range(n0):
+                r0 = (first[0] + i - X0) * dx  # x_I - x_p
                 for j in range(n1):
+                    r1 = (first[1] + j - X1) * dx
                     for k in range(n2):
+                        r2 = (first[2] + k - X2) * dx
                         node = base + i * st[0] + j * st[1] + k * st[2]
                         N = w0[i] * w1[j] * w2[k]
-                        node_offset(first, i, j, k, X, dx, r)
                         if mls:
-                            for b in range(3):
-                                g[b] = dinv * N * r[b]
+                            g0, g1, g2 = dinv * N * r0, dinv * N * r1, dinv * N * r2
                         else:
-                            g[0] = d0[i] * w1[j] * w2[k] * inv_dx
-                            g[1] = w0[i] * d1[j] * w2[k] * inv_dx
-                            g[2] = w0[i] * w1[j] * d2[k] * inv_dx
+                            g0 = d0[i] * w1[j] * w2[k] * inv_dx
+                            g1 = w0[i] * d1[j] * w2[k] * inv_dx
+                            g2 = w0[i] * w1[j] * d2[k] * inv_dx
                         gmass[fld, node] += N * m
-                        for a in range(dim):
-                            mom[a] = v[p, a]
-                            for b in range(dim):
-                                mom[a] += C[p, a, b] * r[b]
-                            force = N * fe[a]
-                            for b in range(dim):
-                                force -= vol[p] * sigma[p, a, b] * g[b]
-                            if force_dt is not None:
-                                gmom[fld, node, a] += N * m * mom[a] + force_dt * force
-                            else:
-                                gmom[fld, node, a] += N * m * mom[a]
-                            if gforce is not None:
-                                gforce[fld, node, a] += force
-                            if gmgrad is not None:
-                                gmgrad[fld, node, a] += m * (d0[i] * w1[j] * w2[k] if a == 0
-                                                             else w0[i] * d1[j] * w2[k] if a == 1
-                                                             else w0[i] * w1[j] * d2[k]) * inv_dx
+                        # component 0 (and 1, 2): the momentum v + C r, the force
+                        # N f - vol sigma g, summed over b < dim in order
+                        mom0 = v0 + c00 * r0
+                        force0 = N * fe0 - s00 * g0
+                        if dim > 1:
+                            mom0 += c01 * r1
+                            force0 -= s01 * g1
+                            mom1 = v1 + c10 * r0 + c11 * r1
+                            force1 = N * fe1 - s10 * g0 - s11 * g1
+                        if dim > 2:
+                            mom0 += c02 * r2
+                            force0 -= s02 * g2
+                            mom1 += c12 * r2
+                            force1 -= s12 * g2
+                            mom2 = v2 + c20 * r0 + c21 * r1 + c22 * r2
+                            force2 = N * fe2 - s20 * g0 - s21 * g1 - s22 * g2
+                        Nm = N * m
+                        if force_dt is not None:
+                            gmom[fld, node, 0] += Nm * mom0 + force_dt * force0
+                            if dim > 1:
+                                gmom[fld, node, 1] += Nm * mom1 + force_dt * force1
+                            if dim > 2:
+                                gmom[fld, node, 2] += Nm * mom2 + force_dt * force2
+                        else:
+                            gmom[fld, node, 0] += Nm * mom0
+                            if dim > 1:
+                                gmom[fld, node, 1] += Nm * mom1
+                            if dim > 2:
+                                gmom[fld, node, 2] += Nm * mom2
+                        if gforce is not None:
+                            gforce[fld, node, 0] += force0
+                            if dim > 1:
+                                gforce[fld, node, 1] += force1
+                            if dim > 2:
+                                gforce[fld, node, 2] += force2
+                        if gmgrad is not None:
+                            gmgrad[fld, node, 0] += m * (d0[i] * w1[j] * w2[k]) * inv_dx
+                            if dim > 1:
+                                gmgrad[fld, node, 1] += m * (w0[i] * d1[j] * w2[k]) * inv_dx
+                            if dim > 2:
+                                gmgrad[fld, node, 2] += m * (w0[i] * w1[j] * d2[k]) * inv_dx
 
 
 @njit
@@ -139,12 +178,11 @@ def g2p_affine(tags, mls, x, v, C, layout, gvel, dt, lp=None, Fdom=None, pfield=
     the first particle that left the box [lo, hi] of `layout` (or -1).
     """
     dim_tag, kind_tag = tags
+    dim = len(dim_tag)
     origin, offset, inv_dx, strides, lo, hi = layout
-    dim, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
-                                                 gvel.shape[1], inv_dx)
+    _, kind, st, off, nax, dx, dinv = _layout(dim_tag, kind_tag, strides, offset,
+                                               gvel.shape[1], inv_dx)
     dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)
-    X = np.zeros(3)  # the particle, in cell units from global node 0
-    r = np.zeros(3)  # x_I - x_p
     first = np.zeros(3)  # global indices of the stencil's first node
     vp = np.zeros(3)
     B = np.zeros((3, 3))
@@ -153,39 +191,89 @@ def g2p_affine(tags, mls, x, v, C, layout, gvel, dt, lp=None, Fdom=None, pfield=
     Dinv = np.zeros((3, 3))
     fld = 0
     bad = -1
+    need_D = kind != LINEAR and not dinv > 0.0  # (GIMP, CPDI: D_p summed per particle)
+    X1 = X2 = 0.0
     for p in range(x.shape[0]):
         if pfield is not None:
             fld = pfield[p]
         if Fdom is not None:
             cpdi_domain(dim, Fdom, lp, p, dom)
-        vp[:] = 0.0
-        B[:] = 0.0
-        G[:] = 0.0
-        D[:] = 0.0
-        for a in range(dim):
-            X[a] = (x[p, a] - origin[a]) * inv_dx
+        # the sums in scalars (the registers), not in the scratch arrays: a store to those
+        # could alias gvel, so each would be a memory round trip per node. Components
+        # beyond dim are left out at compile time; entries of B, G, D beyond dim stay 0.
+        vp0 = vp1 = vp2 = 0.0
+        B00 = B01 = B02 = B10 = B11 = B12 = B20 = B21 = B22 = 0.0
+        G00 = G01 = G02 = G10 = G11 = G12 = G20 = G21 = G22 = 0.0
+        D00 = D01 = D02 = D10 = D11 = D12 = D20 = D21 = D22 = 0.0
+        X0 = (x[p, 0] - origin[0]) * inv_dx  # the particle, in cell units from node 0
+        if dim > 1:
+            X1 = (x[p, 1] - origin[1]) * inv_dx
+        if dim > 2:
+            X2 = (x[p, 2] - origin[2]) * inv_dx
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, Fdom, dom, p, c, origin, inv_dx, st, off, nax)
             _first_nodes(base, st, off, dim, first)
             for i in range(n0):
+                r0 = (first[0] + i - X0) * dx  # x_I - x_p
                 for j in range(n1):
+                    r1 = (first[1] + j - X1) * dx
                     for k in range(n2):
+                        r2 = (first[2] + k - X2) * dx
                         node = base + i * st[0] + j * st[1] + k * st[2]
                         N = w0[i] * w1[j] * w2[k]
                         gN0 = d0[i] * w1[j] * w2[k] * inv_dx
                         gN1 = w0[i] * d1[j] * w2[k] * inv_dx
                         gN2 = w0[i] * w1[j] * d2[k] * inv_dx
-                        node_offset(first, i, j, k, X, dx, r)
-                        for a in range(dim):
-                            u = gvel[fld, node, a]
-                            vp[a] += N * u
-                            G[a, 0] += u * gN0
-                            G[a, 1] += u * gN1
-                            G[a, 2] += u * gN2
-                            for b in range(dim):
-                                B[a, b] += N * u * r[b]
-                                D[a, b] += N * r[a] * r[b]
+                        u0 = gvel[fld, node, 0]
+                        vp0 += N * u0
+                        G00 += u0 * gN0
+                        B00 += N * u0 * r0
+                        if need_D:
+                            D00 += N * r0 * r0
+                        if dim > 1:
+                            u1 = gvel[fld, node, 1]
+                            vp1 += N * u1
+                            G01 += u0 * gN1
+                            G10 += u1 * gN0
+                            G11 += u1 * gN1
+                            B01 += N * u0 * r1
+                            B10 += N * u1 * r0
+                            B11 += N * u1 * r1
+                            if need_D:
+                                D01 += N * r0 * r1
+                                D10 += N * r1 * r0
+                                D11 += N * r1 * r1
+                        if dim > 2:
+                            u2 = gvel[fld, node, 2]
+                            vp2 += N * u2
+                            G02 += u0 * gN2
+                            G12 += u1 * gN2
+                            G20 += u2 * gN0
+                            G21 += u2 * gN1
+                            G22 += u2 * gN2
+                            B02 += N * u0 * r2
+                            B12 += N * u1 * r2
+                            B20 += N * u2 * r0
+                            B21 += N * u2 * r1
+                            B22 += N * u2 * r2
+                            if need_D:
+                                D02 += N * r0 * r2
+                                D12 += N * r1 * r2
+                                D20 += N * r2 * r0
+                                D21 += N * r2 * r1
+                                D22 += N * r2 * r2
+        vp[0], B[0, 0], G[0, 0], D[0, 0] = vp0, B00, G00, D00
+        if dim > 1:
+            vp[1] = vp1
+            B[0, 1], B[1, 0], B[1, 1] = B01, B10, B11
+            G[0, 1], G[1, 0], G[1, 1] = G01, G10, G11
+            D[0, 1], D[1, 0], D[1, 1] = D01, D10, D11
+        if dim > 2:
+            vp[2] = vp2
+            B[0, 2], B[1, 2], B[2, 0], B[2, 1], B[2, 2] = B02, B12, B20, B21, B22
+            G[0, 2], G[1, 2], G[2, 0], G[2, 1], G[2, 2] = G02, G12, G20, G21, G22
+            D[0, 2], D[1, 2], D[2, 0], D[2, 1], D[2, 2] = D02, D12, D20, D21, D22
         # C_p = B_p D_p^-1 (Jiang 2015 eq. 10)
         if kind == LINEAR:
             for a in range(dim):
