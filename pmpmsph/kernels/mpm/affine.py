@@ -27,6 +27,7 @@ from ...jit import njit
 from ...materials.tensor import block_inverse
 from .shapes import (LINEAR, apic_d_inverse, cpdi_domain, local_layout, n_corners,
                      stencil)
+from .transfers import point_force
 
 
 @njit(inline="always")
@@ -74,7 +75,6 @@ def p2g_affine(tags, mls, points, layout, gmass, gmom, fext=None, lp=None, F=Non
     dom = np.zeros((2, 3, 3))  # (CPDI's domain; scratch)
     first = np.zeros(3)  # global indices of the stencil's first node
     fld = 0
-    fe0 = fe1 = fe2 = 0.0
     v1 = v2 = X1 = X2 = 0.0
     c01 = c02 = c10 = c11 = c12 = c20 = c21 = c22 = 0.0
     mom1 = mom2 = force1 = force2 = 0.0  # (components beyond dim: never written)
@@ -100,12 +100,7 @@ def p2g_affine(tags, mls, points, layout, gmass, gmom, fext=None, lp=None, F=Non
             X2 = (x[p, 2] - origin[2]) * inv_dx
             v2 = v[p, 2]
             c02, c12, c20, c21, c22 = C[p, 0, 2], C[p, 1, 2], C[p, 2, 0], C[p, 2, 1], C[p, 2, 2]
-        if fext is not None:
-            fe0 = fext[p, 0]
-            if dim > 1:
-                fe1 = fext[p, 1]
-            if dim > 2:
-                fe2 = fext[p, 2]
+        fe0, fe1, fe2 = point_force(fext, p, dim)
         for c in range(n_corners(kind_tag, dim)):
             base, n0, n1, n2, w0, w1, w2, d0, d1, d2 = stencil(
                 kind_tag, dim, x, lp, F, dom, p, c, origin, inv_dx, st, off, nax)

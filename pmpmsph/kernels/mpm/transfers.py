@@ -15,6 +15,21 @@ from .shapes import cpdi_domain, cpdi_reach, n_corners, node_counts, stencil
 
 
 @njit
+def point_force(fext, p, dim):
+    """The external force of particle p as three scalars: 0 beyond `dim`, and all 0 when
+    `fext` is None (pruned at compile time; a separate function, not inlined by Numba, so that
+    the pruning sees `fext` as its own argument)."""
+    fe0 = fe1 = fe2 = 0.0
+    if fext is not None:
+        fe0 = fext[p, 0]
+        if dim > 1:
+            fe1 = fext[p, 1]
+        if dim > 2:
+            fe2 = fext[p, 2]
+    return fe0, fe1, fe2
+
+
+@njit
 def p2g(tags, points, layout, gmass, gmom, fext=None, lp=None, F=None, pfield=None,
         gforce=None, gmgrad=None, force_dt=None):
     """Scatter mass, momentum and (unless `gforce` is None) internal + external force (eq. 65)
@@ -48,7 +63,6 @@ def p2g(tags, points, layout, gmass, gmom, fext=None, lp=None, F=None, pfield=No
     nax = node_counts(dim, strides, gmass.shape[1])
     dom = np.zeros((2, 3, 3))
     n = x.shape[0]
-    fe0 = fe1 = fe2 = 0.0
     fld = 0
     for p in range(n):
         if pfield is not None:
@@ -66,12 +80,7 @@ def p2g(tags, points, layout, gmass, gmom, fext=None, lp=None, F=None, pfield=No
         s11 = vo * sigma[p, 1, 1]
         s12 = vo * sigma[p, 1, 2]
         s22 = vo * sigma[p, 2, 2]
-        if fext is not None:
-            fe0 = fext[p, 0]
-            if dim > 1:
-                fe1 = fext[p, 1]
-            if dim > 2:
-                fe2 = fext[p, 2]
+        fe0, fe1, fe2 = point_force(fext, p, dim)
         if force_dt is not None:  # scatter p + dt f: scale the force terms by dt once here
             s00 *= force_dt
             s01 *= force_dt
