@@ -27,7 +27,7 @@ from ...jit import njit
 from ...materials.tensor import block_inverse
 from .shapes import (LINEAR, apic_d_inverse, cpdi_domain, local_layout, n_corners,
                      stencil)
-from .transfers import point_force
+from .transfers import add_to_node, point_force
 
 
 @njit(inline="always")
@@ -138,29 +138,18 @@ def p2g_affine(tags, mls, points, layout, gmass, gmom, fext=None, lp=None, F=Non
                             force2 = N * fe2 - s20 * g0 - s21 * g1 - s22 * g2
                         Nm = N * m
                         if force_dt is not None:
-                            gmom[fld, node, 0] += Nm * mom0 + force_dt * force0
-                            if dim > 1:
-                                gmom[fld, node, 1] += Nm * mom1 + force_dt * force1
-                            if dim > 2:
-                                gmom[fld, node, 2] += Nm * mom2 + force_dt * force2
+                            add_to_node(gmom, fld, node, dim, Nm * mom0 + force_dt * force0,
+                                        Nm * mom1 + force_dt * force1,
+                                        Nm * mom2 + force_dt * force2)
                         else:
-                            gmom[fld, node, 0] += Nm * mom0
-                            if dim > 1:
-                                gmom[fld, node, 1] += Nm * mom1
-                            if dim > 2:
-                                gmom[fld, node, 2] += Nm * mom2
+                            add_to_node(gmom, fld, node, dim, Nm * mom0, Nm * mom1, Nm * mom2)
                         if gforce is not None:
-                            gforce[fld, node, 0] += force0
-                            if dim > 1:
-                                gforce[fld, node, 1] += force1
-                            if dim > 2:
-                                gforce[fld, node, 2] += force2
+                            add_to_node(gforce, fld, node, dim, force0, force1, force2)
                         if gmgrad is not None:
-                            gmgrad[fld, node, 0] += m * (d0[i] * w1[j] * w2[k]) * inv_dx
-                            if dim > 1:
-                                gmgrad[fld, node, 1] += m * (w0[i] * d1[j] * w2[k]) * inv_dx
-                            if dim > 2:
-                                gmgrad[fld, node, 2] += m * (w0[i] * w1[j] * d2[k]) * inv_dx
+                            add_to_node(gmgrad, fld, node, dim,
+                                        m * (d0[i] * w1[j] * w2[k]) * inv_dx,
+                                        m * (w0[i] * d1[j] * w2[k]) * inv_dx,
+                                        m * (w0[i] * w1[j] * d2[k]) * inv_dx)
 
 
 @njit

@@ -29,6 +29,17 @@ def point_force(fext, p, dim):
     return fe0, fe1, fe2
 
 
+@njit(inline="always")
+def add_to_node(grid, fld, node, dim, a0, a1, a2):
+    """grid[fld, node, :dim] += (a0, a1, a2)[:dim]: one node's share of a vector (the
+    components beyond `dim` are left out at compile time)."""
+    grid[fld, node, 0] += a0
+    if dim > 1:
+        grid[fld, node, 1] += a1
+    if dim > 2:
+        grid[fld, node, 2] += a2
+
+
 @njit
 def p2g(tags, points, layout, gmass, gmom, fext=None, lp=None, F=None, pfield=None,
         gforce=None, gmgrad=None, force_dt=None):
@@ -131,23 +142,14 @@ def p2g(tags, points, layout, gmass, gmom, fext=None, lp=None, F=None, pfield=No
                             q0, q1, q2 = f0, f1, f2
                         else:
                             q0, q1, q2 = wk * pj0, wk * pj1, wk * pj2
-                        gmom[fld, node, 0] += q0
-                        if dim > 1:
-                            gmom[fld, node, 1] += q1
-                        if dim > 2:
-                            gmom[fld, node, 2] += q2
+                        add_to_node(gmom, fld, node, dim, q0, q1, q2)
                         if gforce is not None:
-                            gforce[fld, node, 0] += f0
-                            if dim > 1:
-                                gforce[fld, node, 1] += f1
-                            if dim > 2:
-                                gforce[fld, node, 2] += f2
+                            add_to_node(gforce, fld, node, dim, f0, f1, f2)
                         if gmgrad is not None:  # multi-field contact's normals
-                            gmgrad[fld, node, 0] += m * d0[i] * w1[j] * w2[k] * inv_dx
-                            if dim > 1:
-                                gmgrad[fld, node, 1] += m * w0[i] * d1[j] * w2[k] * inv_dx
-                            if dim > 2:
-                                gmgrad[fld, node, 2] += m * w0[i] * w1[j] * d2[k] * inv_dx
+                            add_to_node(gmgrad, fld, node, dim,
+                                        m * d0[i] * w1[j] * w2[k] * inv_dx,
+                                        m * w0[i] * d1[j] * w2[k] * inv_dx,
+                                        m * w0[i] * w1[j] * d2[k] * inv_dx)
 
 
 MOMENTUM, WITH_FORCE, FOLDED = 0, 1, 2
