@@ -161,8 +161,7 @@ class MirrorClamps:
         rows, x, v = self._saved
         p["x"][rows] = x
         p["v"][rows] = v
-        self.held_rows()
-        held = self._held_owned
+        held = self.held_owned_rows()
         p["F"][held] = np.eye(3)
         p["sigma"][held] = 0.0
         p["vol"][held] = p["vol0"][held]
@@ -177,6 +176,11 @@ class MirrorClamps:
             self._held_owned = np.nonzero(self._held[:p.n_owned])[0]
             self._held_epoch = p.epoch
         return self._held
+
+    def held_owned_rows(self):
+        """The owned rows of `held_rows`, as an index (cached with it)."""
+        self.held_rows()
+        return self._held_owned
 
     def hand_back(self, acc, gravity, damping=0.0):
         """Each ghost's force (m (acc - g + damping v): without its weight and its own
