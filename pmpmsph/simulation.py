@@ -75,10 +75,15 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         # seeding and the stages are local work on every rank: agreed on before any collective
         self.dist.agree("build", lambda: self._build(case))
         self.migrated = 0
-        # lazy migration lets a particle stay a while on the rank it left; across the wrap of
-        # a periodic slab axis its position wraps at once, beyond that rank's ghosts
-        wraps = self.decomposition is not None and self.decomposition.wraps
-        self.migration = MigrationSchedule(self.dist, lazy=self.sph is None and not wraps)
+        # lazy migration lets a particle stay a while on the rank it left, within the reach
+        # of every stage (MPM: a cell of ghost nodes; SPH: the halo's margin); across the
+        # wrap of a periodic slab axis its position wraps at once (in the MPM grid or the SPH
+        # stage), to the far end of the domain: beyond its rank's ghosts and halo
+        wraps = self.decomposition is not None and self.decomposition.period is not None
+        reach = min(([self.decomposition.dx] if self.mpm is not None and self.decomposition
+                     else []) + ([self.sph.stray_reach] if self.sph is not None else []),
+                    default=1.0)
+        self.migration = MigrationSchedule(self.dist, lazy=not wraps, reach=reach)
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)
                            if case.prescribed else None)
@@ -235,15 +240,15 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
                 signal = fused if fused is not None else self._local_signal_speed()
                 if self.sph is not None:
                     sph_limit = self.sph.local_stable_dt()
-        failed, speed, signal, far, sph_limit = self._step_check(bad >= 0, signal, far,
-                                                                 sph_limit)
+        failed, speed, stray, signal, far, sph_limit = self._step_check(bad >= 0, signal,
+                                                                        far, sph_limit)
         if signal is not None:
             self._fused_signal = (self.step_count + 1, signal)
         if sph_limit is not None:
             self._fused_sph_limit = (self.step_count + 1, sph_limit)
         if failed:
             self._fail(bad)
-        due = self.migration.due(speed, self.dt, dec.dx if dec else 1.0)
+        due = self.migration.due(speed, stray, self.dt)
         self.time += self.dt
         self.step_count += 1
         if due and dec is not None:
@@ -253,7 +258,6 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
                 sent, received = migrate(dec, self.particles, self.step_count, plan=plan,
                                          far_anywhere=far)
                 self.migrated += sent
-                self.migration.migrated()
             if self.sph is not None and (sent or received):
                 self.sph.invalidate()
         if (self.mpm is not None and not self.coupling.keeps_row_order
@@ -268,22 +272,21 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
 
     def _step_check(self, failed, signal, far=None, sph_limit=None):
         """The step's one collective: (failure on any rank, global max |v| along the slab
-        axis for `MigrationSchedule.due` or None, global CFL signal speed or None when
-        `signal` is None, a particle about to skip a slab on any rank or None when `far` is
-        None, the global minimum of `sph_limit` or None). Every rank passes the same Nones.
-        A NaN signal counts as infinite, so no rank ever gets a finite time step from a
-        broken state."""
-        dec = self.decomposition
-        speed = self.migration.local_speed(self.particles, dec.axis if dec else 0)
+        axis and farthest stray past a slab face for `MigrationSchedule.due` or None, global
+        CFL signal speed or None when `signal` is None, a particle about to skip a slab on
+        any rank or None when `far` is None, the global minimum of `sph_limit` or None).
+        Every rank passes the same Nones. A NaN signal counts as infinite, so no rank ever
+        gets a finite time step from a broken state."""
+        speed, stray = self.migration.local_state(self.particles, self.decomposition)
         # every entry as a maximum: a minimum as the max of its negative, flags as 0 / 1
         entries = {"failed": float(failed), "far": None if far is None else float(far),
-                   "speed": speed,
+                   "speed": speed, "stray": stray,
                    "sph_limit": None if sph_limit is None else -sph_limit,
                    "signal": None if signal is None else
                    (signal if signal == signal else math.inf)}
         present = [k for k, value in entries.items() if value is not None]
         out = dict(zip(present, self.dist.max_array([entries[k] for k in present])))
-        return (out["failed"] > 0.0, out.get("speed"), out.get("signal"),
+        return (out["failed"] > 0.0, out.get("speed"), out.get("stray"), out.get("signal"),
                 out["far"] > 0.0 if "far" in out else None,
                 -out["sph_limit"] if "sph_limit" in out else None)
 

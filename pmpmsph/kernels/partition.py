@@ -40,6 +40,18 @@ def max_abs_column(v, axis, n):
 
 
 @njit
+def max_stray(x, axis, lo, hi, n):
+    """How far the farthest of the rows [0, n) lies outside [lo, hi] along `axis` (0 when
+    all are inside; NaN propagates)."""
+    m = 0.0
+    for p in range(n):
+        a = max(lo - x[p, axis], x[p, axis] - hi)
+        if not a <= m:
+            m = a
+    return m
+
+
+@njit
 def column_extent(x, n):
     """(min, max) of x[p, 0] over the rows [0, n) (n > 0); a NaN gives NaN."""
     lo = x[0, 0]
@@ -71,25 +83,32 @@ def gather_rows(views, index, out):
     """Pack rows `index` of several fields side by side: `views` are the fields as (rows,
     bytes per row) uint8 arrays (`ParticleSet.byte_views`), `out` is (len(index), their total
     bytes). One compiled pass instead of a fancy-indexed copy per field (the halo refresh
-    and migration pack a dozen fields two or three times a step)."""
-    pos = 0
+    and migration pack a dozen fields two or three times a step).
+
+    The indices are unsigned: with signed ones Numba adds the wrap-around of negative
+    indices to every byte, which keeps LLVM from vectorising the copy (5x slower: 22 us
+    against 4 us for a refresh of 132 rows of 216 bytes)."""
+    pos = np.uint64(0)
     for view in views:
-        width = view.shape[1]
+        width = np.uint64(view.shape[1])
         for r in range(index.shape[0]):
-            src = index[r]
+            src = np.uint64(index[r])
+            row = np.uint64(r)
             for b in range(width):
-                out[r, pos + b] = view[src, b]
+                out[row, pos + b] = view[src, b]
         pos += width
 
 
 @njit
 def scatter_rows(views, first, rows):
     """The inverse of `gather_rows` into consecutive rows: packed row r goes to row
-    first + r of every field."""
-    pos = 0
+    first + r of every field (unsigned indices, as there)."""
+    pos = np.uint64(0)
     for view in views:
-        width = view.shape[1]
+        width = np.uint64(view.shape[1])
         for r in range(rows.shape[0]):
+            dst = np.uint64(first + r)
+            row = np.uint64(r)
             for b in range(width):
-                view[first + r, b] = rows[r, pos + b]
+                view[dst, b] = rows[row, pos + b]
         pos += width

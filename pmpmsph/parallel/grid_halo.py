@@ -23,6 +23,7 @@ slab is at least two ghost widths thick; otherwise (`pairwise` False, the same o
 """
 import numpy as np
 
+from ..kernels.node_runs import ADD, COPY, MAXIMUM, pack_runs, unpack_runs
 from .distributor import wait_all
 
 TAG_REDUCE = 11
@@ -61,61 +62,57 @@ class GridHalo:
                  else range(1, decomposition.size - 1))
         self.pairwise = all(faces[r + 1] - faces[r] >= 2 * ghost for r in inner)
 
-    def _view(self, arr, sl):
-        blk = self.grid.block(arr)
-        index = [slice(None)] * blk.ndim
-        index[1 + self.axis] = sl
-        return blk[tuple(index)]
+    def _runs(self, sl):
+        """The node layers `sl` (local, along the slab axis) as runs of flat nodes: (outer,
+        stride, first, run) of `kernels.node_runs`."""
+        shape, a = self.grid.shape, self.axis
+        inner = int(np.prod(shape[a + 1:], dtype=np.int64))
+        return (int(np.prod(shape[:a], dtype=np.int64)), int(shape[a]) * inner,
+                sl.start * inner, (sl.stop - sl.start) * inner)
 
-    def _exchange(self, arrays, name, tag, combine):
-        """Send each neighbour the node slice `out` of every array and put what it sends into
-        the slice `in` (`self.routes[name]`: (neighbour, out, in, side) per face), combined
-        with `combine` (a ufunc such as np.add; None: copied). Buffers are made once per
-        (`name`, array shapes) and reused."""
+    def _exchange(self, arrays, name, tag, mode):
+        """Send each neighbour the node layers `out` of every array and combine what it sends
+        into the layers `in` (`self.routes[name]`: (neighbour, out, in, side) per face) by
+        `mode` (`kernels.node_runs`: ADD, MAXIMUM or COPY). Buffers are made once per
+        (`name`, arrays) and reused."""
         routes = self.routes[name]
         if not routes:
             return
-        plan = self._plan(name, arrays)
+        flat, comps, plan = self._plan(name, arrays)
         reqs = []
-        for (nb, _, _, side), (sendbuf, recvbuf, outgoing, _) in zip(routes, plan):
-            for view, part in outgoing:
-                part[...] = view
+        for (nb, _, _, side), (sendbuf, recvbuf, out_runs, _) in zip(routes, plan):
+            pack_runs(flat, comps, *out_runs, sendbuf)
             # tagged with the sender's face: what arrives on our low face left the
             # neighbour's high face
             reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag + 100 * (1 - side)))
             reqs.append(self.comm.Isend(sendbuf, dest=nb, tag=tag + 100 * side))
             self.bytes_sent += sendbuf.nbytes
         wait_all(reqs)
-        for _, _, _, incoming in plan:
-            for view, part in incoming:
-                if combine is not None:
-                    combine(view, part, out=view)
-                else:
-                    view[...] = part
+        for _, recvbuf, _, in_runs in plan:
+            unpack_runs(flat, comps, *in_runs, recvbuf, mode)
 
     def _plan(self, name, arrays):
-        """Per route of `name`: (send buffer, receive buffer, [(node slice of an array, its
-        part of the send buffer)], the same for the receive buffer), made once per route name
-        and set of arrays and reused (the views keep the arrays alive, so their ids are not
-        reused while cached; a few sets per name: P2G sums with and without forces)."""
+        """(the arrays flat as (fields, nodes x components), their components, and per route
+        of `name`: (send buffer, receive buffer, runs sent, runs received)), made once per
+        route name and set of arrays and reused (the flat views keep the arrays alive, so
+        their ids are not reused while cached; a few sets per name: P2G sums with and
+        without forces)."""
         key = (name, tuple(id(a) for a in arrays))
         plan = self._buffers.get(key)
         if plan is None:
             if len(self._buffers) > 16:  # arrays replaced (a new grid): forget the old ones
                 self._buffers.clear()
-            plan = []
+            if not all(a.flags.c_contiguous for a in arrays):  # (the flat views must alias)
+                raise ValueError("ghost-node exchange of a non-contiguous array")
+            flat = tuple(a.reshape(a.shape[0], -1) for a in arrays)
+            comps = np.array([1 if a.ndim == 2 else a.shape[2] for a in arrays], np.int64)
+            per_route = []
             for _, out_sl, in_sl, _ in self.routes[name]:
-                sides = []
-                for sl in (out_sl, in_sl):
-                    views = [self._view(a, sl) for a in arrays]
-                    buf = np.empty(sum(v.size for v in views))
-                    parts, pos = [], 0
-                    for v in views:
-                        parts.append((v, buf[pos:pos + v.size].reshape(v.shape)))
-                        pos += v.size
-                    sides.append((buf, parts))
-                plan.append((sides[0][0], sides[1][0], sides[0][1], sides[1][1]))
-            self._buffers[key] = plan
+                out_runs, in_runs = self._runs(out_sl), self._runs(in_sl)
+                size = sum(a.shape[0] * int(k) for a, k in zip(arrays, comps))
+                per_route.append((np.empty(size * out_runs[0] * out_runs[3]),
+                                  np.empty(size * in_runs[0] * in_runs[3]), out_runs, in_runs))
+            plan = self._buffers[key] = (flat, comps, per_route)
         return plan
 
     def sum(self, arrays):
@@ -124,21 +121,21 @@ class GridHalo:
             self.reduce(arrays)
             self.broadcast(arrays)
             return
-        self._exchange(arrays, "sum", TAG_SUM, combine=np.add)
+        self._exchange(arrays, "sum", TAG_SUM, ADD)
 
     def reduce(self, arrays):
         """Add every ghost node's values into its owner (arrays: nodal accumulators)."""
-        self._exchange(arrays, "reduce", TAG_REDUCE, combine=np.add)
+        self._exchange(arrays, "reduce", TAG_REDUCE, ADD)
 
     def broadcast(self, arrays):
         """Copy the owners' values into the ghost nodes."""
-        self._exchange(arrays, "broadcast", TAG_BCAST, combine=None)
+        self._exchange(arrays, "broadcast", TAG_BCAST, COPY)
 
     def maximum(self, arrays):
         """The largest value over all ranks on owned and ghost nodes alike (as `sum` sums),
         NaN counting as missing (np.fmax)."""
         if not self.pairwise:
-            self._exchange(arrays, "reduce", TAG_REDUCE, combine=np.fmax)
+            self._exchange(arrays, "reduce", TAG_REDUCE, MAXIMUM)
             self.broadcast(arrays)
             return
-        self._exchange(arrays, "sum", TAG_SUM, combine=np.fmax)
+        self._exchange(arrays, "sum", TAG_SUM, MAXIMUM)

@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from ..errors import RunError
-from ..kernels.partition import gather_rows, max_abs_column, slab_leavers
+from ..kernels.partition import gather_rows, max_abs_column, max_stray, slab_leavers
 from .distributor import exchange_rows
 
 TAG_DATA = 22
@@ -99,45 +99,51 @@ migrate.bytes_sent = 0
 
 
 class MigrationSchedule:
-    """When to migrate, decided collectively after every step from the global max |v| along
-    the slab axis, which `Simulation` reduces in the step's one allreduce (with the failure
-    flag and the CFL speed).
+    """When to migrate, decided collectively after every step from two global numbers that
+    `Simulation` reduces in the step's one allreduce (with the failure flag and the CFL
+    speed): how far any owned particle has strayed past its slab's faces along the slab
+    axis, and the max |v| along that axis.
 
-    A particle may stay with its old rank for a while after crossing a slab face: its P2G
-    lands on ghost nodes, which `GridHalo.reduce` adds into their owner, and G2P reads ghost
-    velocities, which `GridHalo.broadcast` fills, as long as its stencil stays inside the
-    ghost layers, which leave one cell for such moves (`parallel/decomposition.py`). So a pure
-    MPM scene migrates only when the particles may have moved, since the last migration,
-    close to that cell along the slab axis: the bound is the sum over steps of dt times the
-    global max |v| along the axis, and migration is due once it plus twice the last step's
-    share (the next step's move, with room for it to grow; MUSL's second P2G comes before
-    migration) passes SLACK cells. A slow scene then migrates every tens to thousands of
-    steps instead of every step. SPH and coupled scenes, whose halos are chosen by owner,
-    migrate every step.
+    A particle may stay with its old rank for a while after crossing a slab face, as long
+    as it stays within `reach` of the face:
+    - MPM: its P2G lands on ghost nodes, which `GridHalo.sum` adds into their owner, and G2P
+      reads ghost velocities, as long as its stencil stays inside the ghost layers, which
+      leave one cell for such moves (`parallel/decomposition.py`): reach = one cell;
+    - SPH: the halo sends every owned particle within its width of a face, beyond as well
+      as inside (`ParticleHalo.send_lists`), and the width holds HALO_MARGIN h beyond the
+      lists' radius (physics/sph/stage.py): reach = that margin.
+    Migration is due once the farthest stray plus twice the last step's move at the max
+    speed (the next step's move, with room for it to grow; MUSL's second P2G and the SPH
+    predictor come before migration) passes SLACK times the smallest reach of the scene's
+    stages. The stray is measured, not bounded from velocities, so a move that is not v dt
+    (particle shifting, a prescribed position, a particle thrown out) counts too. A slow
+    scene migrates every tens to thousands of steps instead of every step.
     """
     SLACK = 0.9
 
-    def __init__(self, dist, lazy):
+    def __init__(self, dist, lazy, reach=1.0):
         self.dist = dist
         self.lazy = lazy and dist.size > 1
         #: several ranks and no laziness: migration after every step
         self.every_step = dist.size > 1 and not self.lazy
-        self.drift = 0.0  # bound on any particle's move along the axis since the migration
+        self.reach = float(reach)
 
-    def local_speed(self, particles, axis):
-        """This rank's max |v| along the slab axis for the bound, or None (not lazy)."""
-        return max_abs_column(particles["v"], axis, particles.n_owned) if self.lazy else None
+    def local_state(self, particles, dec):
+        """(max |v| along the slab axis, farthest stray past this slab's faces) over this
+        rank's owned particles, or (None, None) when not lazy."""
+        if not self.lazy:
+            return None, None
+        n, axis = particles.n_owned, dec.axis
+        lo = dec.origin + dec.lo_cell * dec.dx
+        hi = dec.origin + dec.hi_cell * dec.dx
+        return (max_abs_column(particles["v"], axis, n),
+                max_stray(particles["x"], axis, lo, hi, n))
 
-    def due(self, speed, dt, dx):
-        """Migrate after this step? `speed`: the global max of `local_speed`."""
+    def due(self, speed, stray, dt):
+        """Migrate after this step? `speed`, `stray`: the global maxima of `local_state`."""
         if not self.lazy:
             return self.dist.size > 1
-        share = dt * speed / dx
-        self.drift += share
-        return not (self.drift + 2.0 * share <= self.SLACK)  # NaN: migrate
-
-    def migrated(self):
-        self.drift = 0.0
+        return not (stray + 2.0 * dt * speed <= self.SLACK * self.reach)  # NaN: migrate
 
 
 def migrate_all(decomposition, particles, step=0):

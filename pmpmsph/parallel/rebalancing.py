@@ -35,7 +35,6 @@ class Rebalancing:
             return False
         self._apply_faces(faces)
         self.migrated += migrate_all(self.decomposition, self.particles, self.step_count)
-        self.migration.migrated()
         if self.balancer is not None:
             self.balancer.history.append((self.step_count, before, after, faces.tolist()))
         log.info("step %d: slab faces moved to %s (imbalance %s -> %s)", self.step_count,

@@ -216,13 +216,22 @@ class SeedInterface(Uncoupled):
         self.mpm_materials = sorted({names.index(b.material) for b in case.bodies
                                      if b.method == "mpm" or case.regions})
         fluid = np.array([m.fluid for m in case.materials.values()])
-        # per MPM material: the materials whose SPH rows join its P2G, and how
+        # the materials SPH rows can have: those of the SPH bodies, or with method regions
+        # any (a particle's method follows its region)
+        sph = np.zeros(len(names), bool)
+        for b in case.bodies:
+            sph[names.index(b.material)] |= bool(case.regions) or (b.method == "sph"
+                                                                   and not b.wall)
+        # per MPM material: the materials whose SPH rows join its P2G, and how; a join no
+        # SPH row can take is left out (with its marks and their exchange between ranks)
         self._joins = []
         for material in self.mpm_materials:
             same = np.arange(len(names)) == material
-            self._joins.append((material, same, TRANSITION))
-            if fluid[material] and case.mpm.contact == "multi":
-                self._joins.append((material, ~fluid & ~same, CONTACT))
+            if sph[material]:
+                self._joins.append((material, same, TRANSITION))
+            solids = ~fluid & ~same & sph
+            if fluid[material] and case.mpm.contact == "multi" and solids.any():
+                self._joins.append((material, solids, CONTACT))
         self.gravity = np.array(case.gravity, float)
         self.reorders = 0
         self.handed_over = 0
@@ -240,8 +249,9 @@ class SeedInterface(Uncoupled):
         shape = np.array(g.shape, np.int64)
         mark_mpm_cells(self.dim_tag, p.n_owned, p["x"], p["method"], p["mat"], material,
                        g.origin, g.inv_dx, g.strides, shape, mark[0])
-        if self.mpm.halo_enabled:
-            self.mpm.halo.sum([mark])
+        if self.mpm.halo_enabled:  # (the coupling's exchange: timed as one)
+            with self.timers.phase("halo"):
+                self.mpm.halo.sum([mark])
         g.fold_periodic([mark])  # a cell at one end of a periodic axis borders the other
         return mark[0], shape
 

@@ -71,6 +71,7 @@ class MPMStage:
         self._reach_support = (float(spec.cpdi_reach) + 1.0 if self.shape.corners
                                else self.shape.support)
         self.halo_enabled = True
+        self._warming = False  # (`detached`)
         self.timers = timers if timers is not None else Timers()
         self.set_decomposition(decomposition)
         self.gravity = np.zeros(3)
@@ -154,12 +155,15 @@ class MPMStage:
 
     @contextmanager
     def detached(self):
-        """No ghost-node exchanges inside (the JIT warm-up runs on one rank at a time)."""
+        """No ghost-node exchanges inside (the JIT warm-up runs on one rank at a time), and
+        the transfers run on zero rows too (which compiles them; a step skips them)."""
         self.halo_enabled = False
+        self._warming = True
         try:
             yield
         finally:
             self.halo_enabled = True
+            self._warming = False
 
     @staticmethod
     def fields(case):
@@ -217,7 +221,9 @@ class MPMStage:
                 self._span = g.work_range(p["x"], n, self._margin, *self._keep)
             g.reset(*self._span)
             for lo, hi, stress, force in parts:
-                if hi == lo and lo > 0:
+                # no rows: nothing to scatter (a rank whose slab holds no MPM points pays
+                # no kernel calls), but the warm-up compiles the first part's kernel on them
+                if hi == lo and (lo > 0 or not self._warming):
                     continue
                 sigma = p["sigma"][lo:hi] if stress else self._zero_stress(hi - lo)
                 affine = stress and self.affine  # (the MPM rows: the rows that carry C)
@@ -334,6 +340,10 @@ class MPMStage:
         n, lp, _, pfield, pre, mstate = self._optional(self.n_g2p)
         bad, signal, Lp = -1, None, None
         blend = kinematics and not self.affine  # the PIC/FLIP kinematics of `g2p`
+        if n == 0 and not self._warming:  # no rows (the warm-up compiles on zero rows)
+            if deformation and (kinematics or self.scheme.signal_after_deformation):
+                self.signal = 0.0
+            return bad
         with self.timers.phase("g2p"):
             if kinematics and self.affine:  # v, C, x (and for USL the gradient L)
                 Lp = self._gradients(n) if deformation else None

@@ -53,7 +53,7 @@ from .mirror_clamp import MirrorClamps
 from ...timing import Timers
 
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
-#: may move up to CFL * h past their slab face within a step (migration comes at its end)
+#: may stray this far past their slab face before they migrate (`MigrationSchedule`)
 HALO_MARGIN = 0.5
 #: Verlet skin of the neighbour lists, in units of h: lists (and the halo's membership) are
 #: kept until some particle has moved half the skin since they were built
@@ -99,6 +99,10 @@ class SPHStage:
         self.h = spec.h
         self.radius = SUPPORT * self.h
         self.skin = SKIN * self.h
+        #: how far an owned particle may stray past its slab face before it must migrate
+        #: (`MigrationSchedule`): the halo's width holds this margin beyond the lists'
+        #: radius, so a stray's neighbours across the face are still in the halo
+        self.stray_reach = HALO_MARGIN * self.h
         self.dim_tag = (0,) * self.dim
         self.kern_tag = (0,) * (self.kern + 1)
         # inviscid fluids alone need no velocity gradient (F follows from the density)
@@ -435,7 +439,9 @@ class SPHStage:
             need = self.dist.any(need)
         return need
 
-    def _update_neighbours(self):
+    def _update_neighbours(self, skip=()):
+        """Rebuild the lists and the halo (collectively) if due, else refresh the halo's
+        changing fields but `skip` (fields the caller derives and refreshes itself)."""
         p, t = self.p, self.timers
         if self._need_rebuild():
             if self.halo_enabled:
@@ -454,13 +460,15 @@ class SPHStage:
             p.n_total = self.n_total_build
             if self.halo_enabled:
                 with t.phase("halo"):
-                    self.halo.refresh(self.halo.mutable)
+                    self.halo.refresh(tuple(n for n in self.halo.mutable if n not in skip))
 
     def evaluate(self):
         """Rates (acc, drho, L) of owned SPH particles at the current state."""
         p, t = self.p, self.timers
         self._place_ghosts()
-        self._update_neighbours()
+        # the wall velocities and the solids' mirrored pressures are derived below from the
+        # refreshed rows and then refreshed themselves: not sent twice
+        self._update_neighbours(skip=("vg", "pw"))
         n, nt = p.n_owned, p.n_total
         x = p.with_halo("x")
         if "vg" in p:
