@@ -39,92 +39,10 @@ from ..errors import ConfigError
 from ..jit import njit
 from .base import IsotropicElastic, check_dim
 from .registry import Model, register
-from .tensor import cofactor3, det3, store_sym
+from .tensor import det3, hencky_trial, store_plastic_state, store_principal
 
 STATE_SIZE = 7
 VON_MISES = 7
-#: Jacobi sweeps at most (cyclic Jacobi converges quadratically: 3-5 in practice)
-_SWEEPS = 12
-
-
-@njit(inline="always")
-def _rotation(app, aqq, apq):
-    """(c, s, a_pp', a_qq') of the Jacobi rotation that zeroes a_pq (Numerical Recipes,
-    section 11.1, eqs. 11.1.8-11.1.14)."""
-    if apq == 0.0:
-        return 1.0, 0.0, app, aqq
-    theta = (aqq - app) / (2.0 * apq)
-    t = 1.0 / (abs(theta) + math.sqrt(theta * theta + 1.0))
-    if theta < 0.0:
-        t = -t
-    c = 1.0 / math.sqrt(t * t + 1.0)
-    return c, t * c, app - t * apq, aqq + t * apq
-
-
-@njit(inline="always")
-def sym_eigen(xx, yy, zz, xy, yz, xz):
-    """Eigenvalues (w0, w1, w2) and eigenvectors (the columns of V, row-major 9-tuple) of a
-    symmetric 3x3 matrix by cyclic Jacobi rotations, to round-off."""
-    a00, a11, a22, a01, a12, a02 = xx, yy, zz, xy, yz, xz
-    v00, v01, v02, v10, v11, v12, v20, v21, v22 = 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
-    for _ in range(_SWEEPS):
-        off = a01 * a01 + a02 * a02 + a12 * a12
-        if not off > 1e-36 * (a00 * a00 + a11 * a11 + a22 * a22):
-            break
-        # (p, q) = (0, 1), r = 2
-        c, s, a00, a11 = _rotation(a00, a11, a01)
-        a01 = 0.0
-        a02, a12 = c * a02 - s * a12, s * a02 + c * a12
-        v00, v01 = c * v00 - s * v01, s * v00 + c * v01
-        v10, v11 = c * v10 - s * v11, s * v10 + c * v11
-        v20, v21 = c * v20 - s * v21, s * v20 + c * v21
-        # (0, 2), r = 1
-        c, s, a00, a22 = _rotation(a00, a22, a02)
-        a02 = 0.0
-        a01, a12 = c * a01 - s * a12, s * a01 + c * a12
-        v00, v02 = c * v00 - s * v02, s * v00 + c * v02
-        v10, v12 = c * v10 - s * v12, s * v10 + c * v12
-        v20, v22 = c * v20 - s * v22, s * v20 + c * v22
-        # (1, 2), r = 0
-        c, s, a11, a22 = _rotation(a11, a22, a12)
-        a12 = 0.0
-        a01, a02 = c * a01 - s * a02, s * a01 + c * a02
-        v01, v02 = c * v01 - s * v02, s * v01 + c * v02
-        v11, v12 = c * v11 - s * v12, s * v11 + c * v12
-        v21, v22 = c * v21 - s * v22, s * v21 + c * v22
-    return (a00, a11, a22), (v00, v01, v02, v10, v11, v12, v20, v21, v22)
-
-
-@njit(inline="always")
-def congruence(a, s):
-    """A S A^T as (xx, yy, zz, xy, yz, xz) for A a row-major 9-tuple and S symmetric
-    (xx, yy, zz, xy, yz, xz)."""
-    sxx, syy, szz, sxy, syz, sxz = s
-    m00 = a[0] * sxx + a[1] * sxy + a[2] * sxz
-    m01 = a[0] * sxy + a[1] * syy + a[2] * syz
-    m02 = a[0] * sxz + a[1] * syz + a[2] * szz
-    m10 = a[3] * sxx + a[4] * sxy + a[5] * sxz
-    m11 = a[3] * sxy + a[4] * syy + a[5] * syz
-    m12 = a[3] * sxz + a[4] * syz + a[5] * szz
-    m20 = a[6] * sxx + a[7] * sxy + a[8] * sxz
-    m21 = a[6] * sxy + a[7] * syy + a[8] * syz
-    m22 = a[6] * sxz + a[7] * syz + a[8] * szz
-    return (m00 * a[0] + m01 * a[1] + m02 * a[2],
-            m10 * a[3] + m11 * a[4] + m12 * a[5],
-            m20 * a[6] + m21 * a[7] + m22 * a[8],
-            m00 * a[3] + m01 * a[4] + m02 * a[5],
-            m10 * a[6] + m11 * a[7] + m12 * a[8],
-            m00 * a[6] + m01 * a[7] + m02 * a[8])
-
-
-@njit(inline="always")
-def _trial_strains(F, state):
-    """Principal logarithmic elastic strains of the trial state (step 1) and their
-    directions V."""
-    f = (F[0, 0], F[0, 1], F[0, 2], F[1, 0], F[1, 1], F[1, 2], F[2, 0], F[2, 1], F[2, 2])
-    be = congruence(f, (state[0], state[1], state[2], state[3], state[4], state[5]))
-    w, V = sym_eigen(be[0], be[1], be[2], be[3], be[4], be[5])
-    return (0.5 * math.log(w[0]), 0.5 * math.log(w[1]), 0.5 * math.log(w[2])), V, f
 
 
 @njit(inline="always")
@@ -134,7 +52,7 @@ def stress_von_mises(F, L, dt, state, par, sigma):
     K = par[1]
     yield0 = par[3]
     H = par[4]
-    e, V, f = _trial_strains(F, state)
+    e, V, _ = hencky_trial(F, state)
     ev = e[0] + e[1] + e[2]
     m = ev * (1.0 / 3.0)
     d0, d1, d2 = e[0] - m, e[1] - m, e[2] - m
@@ -148,20 +66,11 @@ def stress_von_mises(F, L, dt, state, par, sigma):
         d1 *= scale
         d2 *= scale
         state[6] = alpha + dgamma
-    J = det3(F)
     p = K * ev
-    t = congruence(V, (p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2, 0.0, 0.0, 0.0))
-    r = 1.0 / J
-    store_sym(sigma, r * t[0], r * t[1], r * t[2], r * t[3], r * t[4], r * t[5])
-    if excess > 0.0:  # the new plastic state: Cp^-1 = F^-1 be F^-T
-        be = congruence(V, (math.exp(2.0 * (m + d0)), math.exp(2.0 * (m + d1)),
-                            math.exp(2.0 * (m + d2)), 0.0, 0.0, 0.0))
-        c = cofactor3(F)  # F^-T = cof(F) / J, so F^-1 = cof(F)^T / J
-        finv = (c[0] * r, c[3] * r, c[6] * r, c[1] * r, c[4] * r, c[7] * r,
-                c[2] * r, c[5] * r, c[8] * r)
-        cp = congruence(finv, be)
-        for i in range(6):
-            state[i] = cp[i]
+    store_principal(sigma, V, p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2,
+                    1.0 / det3(F))
+    if excess > 0.0:  # the new plastic state
+        store_plastic_state(F, V, m + d0, m + d1, m + d2, state)
 
 
 @njit(fastmath=False)
@@ -171,7 +80,7 @@ def energy_von_mises(F, state, par):
     G = par[0]
     K = par[1]
     H = par[4]
-    e, _, _ = _trial_strains(F, state)
+    e, _, _ = hencky_trial(F, state)
     ev = e[0] + e[1] + e[2]
     m = ev / 3.0
     dev2 = (e[0] - m) ** 2 + (e[1] - m) ** 2 + (e[2] - m) ** 2

@@ -11,7 +11,8 @@ import pytest
 from pmpmsph.errors import ConfigError
 from pmpmsph.materials import MODELS, material_from_table
 from pmpmsph.materials.dispatch import compute_stress, strain_energy, wave_speed
-from pmpmsph.materials.von_mises import VonMises, sym_eigen
+from pmpmsph.materials.tensor import sym_eigen
+from pmpmsph.materials.von_mises import VonMises
 
 MAT = VonMises(E=200e9, nu=0.3, rho=7800.0, yield_stress=250e6, hardening=2e9)
 G, K = MAT.mu, MAT.bulk

@@ -1,0 +1,152 @@
+"""Drucker-Prager plasticity (soils, granular materials) at finite strain, in the frame of
+materials/von_mises.py: the multiplicative split, Hencky elasticity and a return in the
+principal logarithmic strains of be = F Cp^-1 F^T. The return is that of de Souza Neto,
+Peric & Owen (Computational Methods for Plasticity, 2008, Box 8.9: smooth cone, then apex)
+with constant cohesion.
+
+Yield function and flow potential (tension positive, p = tr(tau)/3, J2 of dev tau):
+    f = sqrt(J2) + eta p - xi c,        g = sqrt(J2) + eta_bar p,
+matched to Mohr-Coulomb in plane strain (de Souza Neto et al., eq. 6.121: the cone that
+gives the Mohr-Coulomb limit loads of plane-strain problems under associative flow):
+    eta = 3 tan(phi) / sqrt(9 + 12 tan^2(phi)),   xi = 3 / sqrt(9 + 12 tan^2(phi)),
+    eta_bar the same with the dilatancy angle psi (psi = phi: associative; 0: no plastic
+volume change, the default). With trial state (s_t, p_t) and f_t > 0:
+  cone:  dgamma = f_t / (G + K eta eta_bar),  sqrt(J2) = sqrt(J2_t) - G dgamma,
+         p = p_t - K eta_bar dgamma   (valid while sqrt(J2_t) - G dgamma >= 0);
+  apex:  s = 0, p = xi c / eta  (the tip of the cone: a cohesionless material carries no
+         tension; no stress at all once pulled apart).
+The equivalent plastic strain (state[6]) accumulates the deviatoric plastic strain
+sqrt(2/3) |dev de_p| = dgamma / sqrt(3) on the cone, (sqrt(J2_t))/(sqrt(3) G) at the
+apex. State and parameters: ``STATE_SIZE = 7`` as von_mises (Cp^-1, alpha);
+``[G, K, rho0, c, eta, xi, eta_bar, 0]``.
+
+The cone's tip is the tension cut-off: the largest mean stress is xi c / eta (0 without
+cohesion). A separate tensile strength below it is not modelled.
+"""
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from ..errors import ConfigError
+from ..jit import njit
+from .base import IsotropicElastic, check_dim
+from .registry import Model, register
+from .tensor import det3, hencky_trial, store_plastic_state, store_principal
+
+STATE_SIZE = 7
+DRUCKER_PRAGER = 8
+
+
+def plane_strain_match(angle_degrees):
+    """(eta, xi) of the Drucker-Prager cone matched to Mohr-Coulomb in plane strain for a
+    friction (or dilatancy) angle in degrees (module docstring)."""
+    t = math.tan(math.radians(angle_degrees))
+    r = math.sqrt(9.0 + 12.0 * t * t)
+    return 3.0 * t / r, 3.0 / r
+
+
+@njit(inline="always")
+def stress_drucker_prager(F, L, dt, state, par, sigma):
+    """Return map and Cauchy stress of the module docstring; updates `state`."""
+    G = par[0]
+    K = par[1]
+    c = par[3]
+    eta = par[4]
+    xi = par[5]
+    eta_bar = par[6]
+    e, V, _ = hencky_trial(F, state)
+    ev = e[0] + e[1] + e[2]
+    m = ev * (1.0 / 3.0)
+    d0, d1, d2 = e[0] - m, e[1] - m, e[2] - m
+    p = K * ev
+    root_j2 = math.sqrt(2.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # |2 G dev e|/sqrt 2
+    f = root_j2 + eta * p - xi * c
+    if f > 0.0:
+        dgamma = f / (G + K * eta * eta_bar)
+        if root_j2 - G * dgamma >= 0.0:  # onto the smooth cone
+            scale = 1.0 - G * dgamma / root_j2 if root_j2 > 0.0 else 0.0
+            p -= K * eta_bar * dgamma
+            state[6] += dgamma / math.sqrt(3.0)
+        else:  # onto the apex
+            scale = 0.0
+            p = xi * c / eta if eta > 0.0 else p
+            state[6] += root_j2 / (math.sqrt(3.0) * G)
+        d0 *= scale
+        d1 *= scale
+        d2 *= scale
+        m = p / (3.0 * K)
+    store_principal(sigma, V, p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2,
+                    1.0 / det3(F))
+    if f > 0.0:  # the new plastic state
+        store_plastic_state(F, V, m + d0, m + d1, m + d2, state)
+
+
+@njit(fastmath=False)
+def energy_drucker_prager(F, state, par):
+    """psi = K/2 (tr e)^2 + G |dev e|^2 at the stored plastic state, per unit reference
+    volume (no hardening: the plastic work is all dissipated)."""
+    G = par[0]
+    K = par[1]
+    e, _, _ = hencky_trial(F, state)
+    ev = e[0] + e[1] + e[2]
+    m = ev / 3.0
+    return 0.5 * K * ev * ev + G * ((e[0] - m) ** 2 + (e[1] - m) ** 2 + (e[2] - m) ** 2)
+
+
+@njit(inline="always")
+def wave_speed_drucker_prager(par, J):
+    """The elastic longitudinal speed at rest, sqrt((K + 4/3 G)/rho0)."""
+    return np.sqrt((par[1] + 4.0 / 3.0 * par[0]) / par[2])
+
+
+@dataclass(frozen=True)
+class DruckerPrager(IsotropicElastic):
+    """Drucker-Prager plasticity (module docstring): E, nu, rho, `friction_angle` and
+    `dilatancy_angle` in degrees (0 <= psi <= phi < 90; psi default 0), `cohesion` (>= 0,
+    default 0)."""
+
+    friction_angle: float
+    cohesion: float = 0.0
+    dilatancy_angle: float = 0.0
+    type_code: ClassVar[int] = DRUCKER_PRAGER
+    model: ClassVar[str] = "drucker_prager"
+    required: ClassVar[tuple] = ("E", "nu", "rho", "friction_angle")
+    optional: ClassVar[tuple] = ("cohesion", "dilatancy_angle")
+    state_size: ClassVar[int] = STATE_SIZE
+
+    def __post_init__(self):
+        super().__post_init__()
+        if not 0.0 <= self.friction_angle < 90.0:
+            raise ConfigError("friction_angle", "must be in [0, 90) degrees, got "
+                              f"{self.friction_angle!r}")
+        if not 0.0 <= self.dilatancy_angle <= self.friction_angle:
+            raise ConfigError("dilatancy_angle", "must be in [0, friction_angle] degrees, "
+                              f"got {self.dilatancy_angle!r}")
+        if not self.cohesion >= 0.0:
+            raise ConfigError("cohesion", f"must be >= 0, got {self.cohesion!r}")
+        if self.friction_angle == 0.0 and self.cohesion == 0.0:
+            raise ConfigError("cohesion", "a material without friction needs a cohesion > 0 "
+                              "(it would carry no shear stress)")
+
+    @property
+    def bulk(self):
+        return self.E / (3.0 * (1.0 - 2.0 * self.nu))
+
+    def params(self, dim):
+        check_dim(dim)
+        eta, xi = plane_strain_match(self.friction_angle)
+        eta_bar, _ = plane_strain_match(self.dilatancy_angle)
+        return self._vector(self.mu, self.bulk, self.rho, self.cohesion, eta, xi, eta_bar)
+
+    def sound_speed(self, dim=3):
+        """sqrt((K + 4/3 G)/rho) in every dimension."""
+        return math.sqrt((self.bulk + 4.0 / 3.0 * self.mu) / self.rho)
+
+    def initial_state(self):
+        return np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0], dtype=np.float64)
+
+
+register(Model(DruckerPrager, stress_drucker_prager, energy_drucker_prager,
+               wave_speed_drucker_prager))
