@@ -15,13 +15,16 @@ import numpy as np
 
 from ..jit import njit
 
-#: what `unpack_runs` does with a received value v at a node's value a
-ADD, MAXIMUM, COPY = 0, 1, 2
+#: what `move_runs` does with a buffer value v and a node's value a: PACK copies a into the
+#: buffer; ADD, MAXIMUM (the larger, a NaN counting as missing like np.fmax) and COPY
+#: combine v into a
+PACK, ADD, MAXIMUM, COPY = 0, 1, 2, 3
 
 
 @njit
-def pack_runs(arrays, comps, outer, stride, first, run, buf):
-    """Copy the runs of every array (flat (fields, nodes x comps[i])) into `buf`."""
+def move_runs(arrays, comps, outer, stride, first, run, buf, mode):
+    """Between the runs of every array (flat (fields, nodes x comps[i])) and `buf`, in the
+    buffer order of the module docstring: packed into it (PACK) or combined from it."""
     pos = np.uint64(0)
     for i in range(len(arrays)):
         a = arrays[i]
@@ -30,24 +33,10 @@ def pack_runs(arrays, comps, outer, stride, first, run, buf):
         for f in range(a.shape[0]):
             for o in range(outer):
                 start = (np.uint64(o) * np.uint64(stride) + np.uint64(first)) * k
-                for j in range(length):
-                    buf[pos + j] = a[f, start + j]
-                pos += length
-
-
-@njit
-def unpack_runs(arrays, comps, outer, stride, first, run, buf, mode):
-    """The inverse of `pack_runs`, combining each received value v with the node's a:
-    a + v (ADD), the larger, a NaN counting as missing like np.fmax (MAXIMUM), or v (COPY)."""
-    pos = np.uint64(0)
-    for i in range(len(arrays)):
-        a = arrays[i]
-        k = np.uint64(comps[i])
-        length = np.uint64(run) * k
-        for f in range(a.shape[0]):
-            for o in range(outer):
-                start = (np.uint64(o) * np.uint64(stride) + np.uint64(first)) * k
-                if mode == ADD:
+                if mode == PACK:
+                    for j in range(length):
+                        buf[pos + j] = a[f, start + j]
+                elif mode == ADD:
                     for j in range(length):
                         a[f, start + j] += buf[pos + j]
                 elif mode == MAXIMUM:

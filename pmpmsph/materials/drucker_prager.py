@@ -33,7 +33,7 @@ from ..errors import ConfigError
 from ..jit import njit
 from .base import IsotropicElastic, check_dim
 from .registry import Model, register
-from .tensor import det3, hencky_trial, store_plastic_state, store_principal
+from .tensor import det3, hencky_split, hencky_trial, store_plastic_state, store_principal
 
 STATE_SIZE = 7
 DRUCKER_PRAGER = 8
@@ -57,9 +57,7 @@ def stress_drucker_prager(F, L, dt, state, par, sigma):
     xi = par[5]
     eta_bar = par[6]
     e, V, _ = hencky_trial(F, state)
-    ev = e[0] + e[1] + e[2]
-    m = ev * (1.0 / 3.0)
-    d0, d1, d2 = e[0] - m, e[1] - m, e[2] - m
+    ev, m, d0, d1, d2 = hencky_split(e)
     p = K * ev
     root_j2 = math.sqrt(2.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # |2 G dev e|/sqrt 2
     f = root_j2 + eta * p - xi * c
@@ -90,9 +88,8 @@ def energy_drucker_prager(F, state, par):
     G = par[0]
     K = par[1]
     e, _, _ = hencky_trial(F, state)
-    ev = e[0] + e[1] + e[2]
-    m = ev / 3.0
-    return 0.5 * K * ev * ev + G * ((e[0] - m) ** 2 + (e[1] - m) ** 2 + (e[2] - m) ** 2)
+    ev, _, d0, d1, d2 = hencky_split(e)
+    return 0.5 * K * ev * ev + G * (d0 * d0 + d1 * d1 + d2 * d2)
 
 
 @njit(inline="always")

@@ -235,6 +235,12 @@ def _rotation(app, aqq, apq):
 
 
 @njit(inline="always")
+def _turn(c, s, a, b):
+    """(c a - s b, s a + c b): one Jacobi rotation of a pair of entries."""
+    return c * a - s * b, s * a + c * b
+
+
+@njit(inline="always")
 def sym_eigen(xx, yy, zz, xy, yz, xz):
     """Eigenvalues (w0, w1, w2) and eigenvectors (the columns of V, row-major 9-tuple) of a
     symmetric 3x3 matrix by cyclic Jacobi rotations, to round-off."""
@@ -247,24 +253,24 @@ def sym_eigen(xx, yy, zz, xy, yz, xz):
         # (p, q) = (0, 1), r = 2
         c, s, a00, a11 = _rotation(a00, a11, a01)
         a01 = 0.0
-        a02, a12 = c * a02 - s * a12, s * a02 + c * a12
-        v00, v01 = c * v00 - s * v01, s * v00 + c * v01
-        v10, v11 = c * v10 - s * v11, s * v10 + c * v11
-        v20, v21 = c * v20 - s * v21, s * v20 + c * v21
+        a02, a12 = _turn(c, s, a02, a12)
+        v00, v01 = _turn(c, s, v00, v01)
+        v10, v11 = _turn(c, s, v10, v11)
+        v20, v21 = _turn(c, s, v20, v21)
         # (0, 2), r = 1
         c, s, a00, a22 = _rotation(a00, a22, a02)
         a02 = 0.0
-        a01, a12 = c * a01 - s * a12, s * a01 + c * a12
-        v00, v02 = c * v00 - s * v02, s * v00 + c * v02
-        v10, v12 = c * v10 - s * v12, s * v10 + c * v12
-        v20, v22 = c * v20 - s * v22, s * v20 + c * v22
+        a01, a12 = _turn(c, s, a01, a12)
+        v00, v02 = _turn(c, s, v00, v02)
+        v10, v12 = _turn(c, s, v10, v12)
+        v20, v22 = _turn(c, s, v20, v22)
         # (1, 2), r = 0
         c, s, a11, a22 = _rotation(a11, a22, a12)
         a12 = 0.0
-        a01, a02 = c * a01 - s * a02, s * a01 + c * a02
-        v01, v02 = c * v01 - s * v02, s * v01 + c * v02
-        v11, v12 = c * v11 - s * v12, s * v11 + c * v12
-        v21, v22 = c * v21 - s * v22, s * v21 + c * v22
+        a01, a02 = _turn(c, s, a01, a02)
+        v01, v02 = _turn(c, s, v01, v02)
+        v11, v12 = _turn(c, s, v11, v12)
+        v21, v22 = _turn(c, s, v21, v22)
     return (a00, a11, a22), (v00, v01, v02, v10, v11, v12, v20, v21, v22)
 
 
@@ -322,3 +328,11 @@ def store_plastic_state(F, V, e0, e1, e2, state):
     cp = congruence(finv, be)
     for i in range(6):
         state[i] = cp[i]
+
+
+@njit(inline="always")
+def hencky_split(e):
+    """(tr e, tr e / 3, the deviatoric parts d0, d1, d2) of principal strains e."""
+    ev = e[0] + e[1] + e[2]
+    m = ev * (1.0 / 3.0)
+    return ev, m, e[0] - m, e[1] - m, e[2] - m

@@ -39,7 +39,7 @@ from ..errors import ConfigError
 from ..jit import njit
 from .base import IsotropicElastic, check_dim
 from .registry import Model, register
-from .tensor import det3, hencky_trial, store_plastic_state, store_principal
+from .tensor import det3, hencky_split, hencky_trial, store_plastic_state, store_principal
 
 STATE_SIZE = 7
 VON_MISES = 7
@@ -53,9 +53,7 @@ def stress_von_mises(F, L, dt, state, par, sigma):
     yield0 = par[3]
     H = par[4]
     e, V, _ = hencky_trial(F, state)
-    ev = e[0] + e[1] + e[2]
-    m = ev * (1.0 / 3.0)
-    d0, d1, d2 = e[0] - m, e[1] - m, e[2] - m
+    ev, m, d0, d1, d2 = hencky_split(e)
     q = math.sqrt(6.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # sqrt(3/2) |2 G dev e|
     alpha = state[6]
     excess = q - (yield0 + H * alpha)
@@ -81,9 +79,8 @@ def energy_von_mises(F, state, par):
     K = par[1]
     H = par[4]
     e, _, _ = hencky_trial(F, state)
-    ev = e[0] + e[1] + e[2]
-    m = ev / 3.0
-    dev2 = (e[0] - m) ** 2 + (e[1] - m) ** 2 + (e[2] - m) ** 2
+    ev, _, d0, d1, d2 = hencky_split(e)
+    dev2 = d0 * d0 + d1 * d1 + d2 * d2
     return 0.5 * K * ev * ev + G * dev2 + 0.5 * H * state[6] * state[6]
 
 

@@ -23,7 +23,7 @@ slab is at least two ghost widths thick; otherwise (`pairwise` False, the same o
 """
 import numpy as np
 
-from ..kernels.node_runs import ADD, COPY, MAXIMUM, pack_runs, unpack_runs
+from ..kernels.node_runs import ADD, COPY, MAXIMUM, PACK, move_runs
 from .distributor import wait_all
 
 TAG_REDUCE = 11
@@ -81,7 +81,7 @@ class GridHalo:
         flat, comps, plan = self._plan(name, arrays)
         reqs = []
         for (nb, _, _, side), (sendbuf, recvbuf, out_runs, _) in zip(routes, plan):
-            pack_runs(flat, comps, *out_runs, sendbuf)
+            move_runs(flat, comps, *out_runs, sendbuf, PACK)
             # tagged with the sender's face: what arrives on our low face left the
             # neighbour's high face
             reqs.append(self.comm.Irecv(recvbuf, source=nb, tag=tag + 100 * (1 - side)))
@@ -89,7 +89,7 @@ class GridHalo:
             self.bytes_sent += sendbuf.nbytes
         wait_all(reqs)
         for _, recvbuf, _, in_runs in plan:
-            unpack_runs(flat, comps, *in_runs, recvbuf, mode)
+            move_runs(flat, comps, *in_runs, recvbuf, mode)
 
     def _plan(self, name, arrays):
         """(the arrays flat as (fields, nodes x components), their components, and per route

@@ -3,7 +3,7 @@ node layers: the same values in the same order, and the three ways of combining 
 import numpy as np
 import pytest
 
-from pmpmsph.kernels.node_runs import ADD, COPY, MAXIMUM, pack_runs, unpack_runs
+from pmpmsph.kernels.node_runs import ADD, COPY, MAXIMUM, PACK, move_runs
 
 
 def _runs(shape, axis, lo, hi):
@@ -32,7 +32,7 @@ def test_runs_are_the_layers_in_c_order(shape, axis, lo, hi):
     comps = np.array([1, len(shape)], np.int64)
     runs = _runs(shape, axis, lo, hi)
     buf = np.empty(sum(_layers(a, shape, axis, lo, hi).size for a in arrays))
-    pack_runs(flat, comps, *runs, buf)
+    move_runs(flat, comps, *runs, buf, PACK)
     expect = np.concatenate([_layers(a, shape, axis, lo, hi).ravel() for a in arrays])
     assert np.array_equal(buf, expect)
 
@@ -42,8 +42,8 @@ def test_runs_are_the_layers_in_c_order(shape, axis, lo, hi):
     for mode, combine in ((ADD, np.add), (MAXIMUM, np.fmax), (COPY, None)):
         got = tuple(a.copy() for a in arrays)
         want = tuple(a.copy() for a in arrays)
-        unpack_runs(tuple(a.reshape(a.shape[0], -1) for a in got), comps, *runs, received,
-                    mode)
+        move_runs(tuple(a.reshape(a.shape[0], -1) for a in got), comps, *runs, received,
+                  mode)
         for w, part in zip(want, parts):
             view = _layers(w, shape, axis, lo, hi)
             value = part.reshape(view.shape)
