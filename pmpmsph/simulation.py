@@ -80,9 +80,7 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         # wrap of a periodic slab axis its position wraps at once (in the MPM grid or the SPH
         # stage), to the far end of the domain: beyond its rank's ghosts and halo
         wraps = self.decomposition is not None and self.decomposition.period is not None
-        reach = min(([self.decomposition.dx] if self.mpm is not None and self.decomposition
-                     else []) + ([self.sph.stray_reach] if self.sph is not None else []),
-                    default=1.0)
+        reach = min(s.stray_reach for s in (self.mpm, self.sph) if s is not None)
         self.migration = MigrationSchedule(self.dist, lazy=not wraps, reach=reach)
         self.loads = TractionLoads(case.loads, self.particles) if case.loads else None
         self.prescribed = (PrescribedVelocity(case.prescribed, self.particles)

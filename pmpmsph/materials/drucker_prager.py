@@ -17,7 +17,7 @@ volume change, the default). With trial state (s_t, p_t) and f_t > 0:
          tension; no stress at all once pulled apart).
 The equivalent plastic strain (state[6]) accumulates the deviatoric plastic strain
 sqrt(2/3) |dev de_p| = dgamma / sqrt(3) on the cone, (sqrt(J2_t))/(sqrt(3) G) at the
-apex. State and parameters: ``STATE_SIZE = 7`` as von_mises (Cp^-1, alpha);
+apex. State as von_mises (Cp^-1, alpha); parameters
 ``[G, K, rho0, c, eta, xi, eta_bar, 0]``.
 
 The cone's tip is the tension cut-off: the largest mean stress is xi c / eta (0 without
@@ -27,15 +27,13 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-import numpy as np
-
 from ..errors import ConfigError
 from ..jit import njit
-from .base import IsotropicElastic, check_dim
+from .base import check_dim
 from .registry import Model, register
-from .tensor import det3, hencky_split, hencky_trial, store_plastic_state, store_principal
+from .tensor import hencky_split, hencky_trial, store_return
+from .von_mises import HenckyPlastic, wave_speed_hencky_plastic
 
-STATE_SIZE = 7
 DRUCKER_PRAGER = 8
 
 
@@ -56,7 +54,7 @@ def stress_drucker_prager(F, L, dt, state, par, sigma):
     eta = par[4]
     xi = par[5]
     eta_bar = par[6]
-    e, V, _ = hencky_trial(F, state)
+    e, V = hencky_trial(F, state)
     ev, m, d0, d1, d2 = hencky_split(e)
     p = K * ev
     root_j2 = math.sqrt(2.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # |2 G dev e|/sqrt 2
@@ -75,10 +73,7 @@ def stress_drucker_prager(F, L, dt, state, par, sigma):
         d1 *= scale
         d2 *= scale
         m = p / (3.0 * K)
-    store_principal(sigma, V, p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2,
-                    1.0 / det3(F))
-    if f > 0.0:  # the new plastic state
-        store_plastic_state(F, V, m + d0, m + d1, m + d2, state)
+    store_return(F, V, p, G, m, d0, d1, d2, f > 0.0, state, sigma)
 
 
 @njit(fastmath=False)
@@ -87,19 +82,13 @@ def energy_drucker_prager(F, state, par):
     volume (no hardening: the plastic work is all dissipated)."""
     G = par[0]
     K = par[1]
-    e, _, _ = hencky_trial(F, state)
+    e, _ = hencky_trial(F, state)
     ev, _, d0, d1, d2 = hencky_split(e)
     return 0.5 * K * ev * ev + G * (d0 * d0 + d1 * d1 + d2 * d2)
 
 
-@njit(inline="always")
-def wave_speed_drucker_prager(par, J):
-    """The elastic longitudinal speed at rest, sqrt((K + 4/3 G)/rho0)."""
-    return np.sqrt((par[1] + 4.0 / 3.0 * par[0]) / par[2])
-
-
 @dataclass(frozen=True)
-class DruckerPrager(IsotropicElastic):
+class DruckerPrager(HenckyPlastic):
     """Drucker-Prager plasticity (module docstring): E, nu, rho, `friction_angle` and
     `dilatancy_angle` in degrees (0 <= psi <= phi < 90; psi default 0), `cohesion` (>= 0,
     default 0)."""
@@ -111,7 +100,6 @@ class DruckerPrager(IsotropicElastic):
     model: ClassVar[str] = "drucker_prager"
     required: ClassVar[tuple] = ("E", "nu", "rho", "friction_angle")
     optional: ClassVar[tuple] = ("cohesion", "dilatancy_angle")
-    state_size: ClassVar[int] = STATE_SIZE
 
     def __post_init__(self):
         super().__post_init__()
@@ -127,23 +115,12 @@ class DruckerPrager(IsotropicElastic):
             raise ConfigError("cohesion", "a material without friction needs a cohesion > 0 "
                               "(it would carry no shear stress)")
 
-    @property
-    def bulk(self):
-        return self.E / (3.0 * (1.0 - 2.0 * self.nu))
-
     def params(self, dim):
         check_dim(dim)
         eta, xi = plane_strain_match(self.friction_angle)
         eta_bar, _ = plane_strain_match(self.dilatancy_angle)
         return self._vector(self.mu, self.bulk, self.rho, self.cohesion, eta, xi, eta_bar)
 
-    def sound_speed(self, dim=3):
-        """sqrt((K + 4/3 G)/rho) in every dimension."""
-        return math.sqrt((self.bulk + 4.0 / 3.0 * self.mu) / self.rho)
-
-    def initial_state(self):
-        return np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0], dtype=np.float64)
-
 
 register(Model(DruckerPrager, stress_drucker_prager, energy_drucker_prager,
-               wave_speed_drucker_prager))
+               wave_speed_hencky_plastic))

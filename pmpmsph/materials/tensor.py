@@ -300,12 +300,12 @@ def congruence(a, s):
 def hencky_trial(F, state):
     """The trial state of the multiplicative plasticity models (materials/von_mises.py,
     materials/drucker_prager.py): the principal logarithmic strains e_i = ln(lambda_i)/2 of
-    be = F Cp^-1 F^T, Cp^-1 the first six entries of `state` (xx, yy, zz, xy, yz, xz), their
-    directions V (row-major 9-tuple, eigenvectors as columns) and F as a 9-tuple."""
+    be = F Cp^-1 F^T, Cp^-1 the first six entries of `state` (xx, yy, zz, xy, yz, xz), and
+    their directions V (row-major 9-tuple, eigenvectors as columns)."""
     f = (F[0, 0], F[0, 1], F[0, 2], F[1, 0], F[1, 1], F[1, 2], F[2, 0], F[2, 1], F[2, 2])
     be = congruence(f, (state[0], state[1], state[2], state[3], state[4], state[5]))
     w, V = sym_eigen(be[0], be[1], be[2], be[3], be[4], be[5])
-    return (0.5 * math.log(w[0]), 0.5 * math.log(w[1]), 0.5 * math.log(w[2])), V, f
+    return (0.5 * math.log(w[0]), 0.5 * math.log(w[1]), 0.5 * math.log(w[2])), V
 
 
 @njit(inline="always")
@@ -336,3 +336,14 @@ def hencky_split(e):
     ev = e[0] + e[1] + e[2]
     m = ev * (1.0 / 3.0)
     return ev, m, e[0] - m, e[1] - m, e[2] - m
+
+
+@njit(inline="always")
+def store_return(F, V, p, G, m, d0, d1, d2, plastic, state, sigma):
+    """The end of a return of the plasticity models: sigma = tau / J with the Kirchhoff stress
+    tau = p 1 + 2 G dev e (principal deviatoric strains d_i in the directions V) and, after
+    plastic flow, the new plastic state from the elastic strains m + d_i."""
+    store_principal(sigma, V, p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2,
+                    1.0 / det3(F))
+    if plastic:
+        store_plastic_state(F, V, m + d0, m + d1, m + d2, state)

@@ -39,7 +39,7 @@ from ..errors import ConfigError
 from ..jit import njit
 from .base import IsotropicElastic, check_dim
 from .registry import Model, register
-from .tensor import det3, hencky_split, hencky_trial, store_plastic_state, store_principal
+from .tensor import hencky_split, hencky_trial, store_return
 
 STATE_SIZE = 7
 VON_MISES = 7
@@ -52,7 +52,7 @@ def stress_von_mises(F, L, dt, state, par, sigma):
     K = par[1]
     yield0 = par[3]
     H = par[4]
-    e, V, _ = hencky_trial(F, state)
+    e, V = hencky_trial(F, state)
     ev, m, d0, d1, d2 = hencky_split(e)
     q = math.sqrt(6.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # sqrt(3/2) |2 G dev e|
     alpha = state[6]
@@ -64,11 +64,7 @@ def stress_von_mises(F, L, dt, state, par, sigma):
         d1 *= scale
         d2 *= scale
         state[6] = alpha + dgamma
-    p = K * ev
-    store_principal(sigma, V, p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2,
-                    1.0 / det3(F))
-    if excess > 0.0:  # the new plastic state
-        store_plastic_state(F, V, m + d0, m + d1, m + d2, state)
+    store_return(F, V, K * ev, G, m, d0, d1, d2, excess > 0.0, state, sigma)
 
 
 @njit(fastmath=False)
@@ -78,20 +74,40 @@ def energy_von_mises(F, state, par):
     G = par[0]
     K = par[1]
     H = par[4]
-    e, _, _ = hencky_trial(F, state)
+    e, _ = hencky_trial(F, state)
     ev, _, d0, d1, d2 = hencky_split(e)
     dev2 = d0 * d0 + d1 * d1 + d2 * d2
     return 0.5 * K * ev * ev + G * dev2 + 0.5 * H * state[6] * state[6]
 
 
 @njit(inline="always")
-def wave_speed_von_mises(par, J):
-    """The elastic longitudinal speed at rest (module docstring)."""
+def wave_speed_hencky_plastic(par, J):
+    """The elastic longitudinal speed at rest, sqrt((K + 4/3 G)/rho0) with G = par[0] and
+    K = par[1] (module docstring; also drucker_prager's)."""
     return np.sqrt((par[1] + 4.0 / 3.0 * par[0]) / par[2])
 
 
 @dataclass(frozen=True)
-class VonMises(IsotropicElastic):
+class HenckyPlastic(IsotropicElastic):
+    """What the plasticity models in this frame share (E, nu, rho; parameters begin
+    [G, K, rho0]): the state Cp^-1 = 1, alpha = 0 at the start, and the elastic wave speed."""
+
+    state_size: ClassVar[int] = STATE_SIZE
+
+    @property
+    def bulk(self):
+        return self.E / (3.0 * (1.0 - 2.0 * self.nu))
+
+    def sound_speed(self, dim=3):
+        """sqrt((K + 4/3 G)/rho) in every dimension (1D is uniaxial strain here)."""
+        return math.sqrt((self.bulk + 4.0 / 3.0 * self.mu) / self.rho)
+
+    def initial_state(self):
+        return np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0], dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class VonMises(HenckyPlastic):
     """J2 plasticity with linear isotropic hardening (module docstring): E, nu, rho, the
     initial yield stress (`yield_stress`, uniaxial) and the hardening modulus
     (`hardening`, d yield stress / d equivalent plastic strain; 0: perfectly plastic)."""
@@ -103,7 +119,6 @@ class VonMises(IsotropicElastic):
     aliases: ClassVar[tuple] = ("j2",)
     required: ClassVar[tuple] = ("E", "nu", "rho", "yield_stress")
     optional: ClassVar[tuple] = ("hardening",)
-    state_size: ClassVar[int] = STATE_SIZE
 
     def __post_init__(self):
         super().__post_init__()
@@ -112,20 +127,9 @@ class VonMises(IsotropicElastic):
         if not self.hardening >= 0:
             raise ConfigError("hardening", f"must be >= 0, got {self.hardening!r}")
 
-    @property
-    def bulk(self):
-        return self.E / (3.0 * (1.0 - 2.0 * self.nu))
-
     def params(self, dim):
         check_dim(dim)
         return self._vector(self.mu, self.bulk, self.rho, self.yield_stress, self.hardening)
 
-    def sound_speed(self, dim=3):
-        """sqrt((K + 4/3 G)/rho) in every dimension (1D is uniaxial strain here)."""
-        return math.sqrt((self.bulk + 4.0 / 3.0 * self.mu) / self.rho)
 
-    def initial_state(self):
-        return np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0], dtype=np.float64)
-
-
-register(Model(VonMises, stress_von_mises, energy_von_mises, wave_speed_von_mises))
+register(Model(VonMises, stress_von_mises, energy_von_mises, wave_speed_hencky_plastic))

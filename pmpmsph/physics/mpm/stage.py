@@ -72,6 +72,9 @@ class MPMStage:
                                else self.shape.support)
         self.halo_enabled = True
         self._warming = False  # (`detached`)
+        #: how far an owned point may stray past its slab face before it must migrate
+        #: (`MigrationSchedule`): the ghost layers leave one cell for such moves
+        self.stray_reach = float(case.grid.cell_size[0])
         self.timers = timers if timers is not None else Timers()
         self.set_decomposition(decomposition)
         self.gravity = np.zeros(3)
