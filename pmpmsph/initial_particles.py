@@ -4,6 +4,7 @@ import numpy as np
 
 from .codes import METHOD_CODES
 from .errors import ConfigError
+from .io.derived_fields import offered
 from .kernels.mpm.shape_functions.registry import shape_named
 from .particles import F_FIELD, J_FIELD, FieldSpec, ParticleSet
 from .physics.coupling import coupling_fields
@@ -195,8 +196,9 @@ def build_particles(case, keep=None):
         if not count:
             raise ConfigError(f"{spec.key}.box", f"holds no particle of body {spec.body!r}, "
                               "so this would act on nothing")
+    derived = offered(case, ps)  # io/derived_fields.py: computed when a snapshot is written
     for i, name in enumerate(case.output.fields):
-        if name != "rho" and name not in ps:  # rho is derived (mass/vol) if not a field
+        if name not in ps and name not in derived:
             raise ConfigError(f"output.fields[{i}]", f"no particle field {name!r} in this "
-                              f"scene; fields: {', '.join(sorted(set(ps.arrays) | {'rho'}))}")
+                              f"scene; fields: {', '.join(sorted(set(ps.arrays) | set(derived)))}")
     return ps

@@ -220,6 +220,9 @@ DIAG_AUTO_PARTICLES = 100_000
 #: ... and every this many steps above
 DIAG_AUTO_EVERY = 100
 
+#: added to the default output fields when a material is plastic (io/derived_fields.py)
+PLASTIC_FIELDS = ("pressure", "mises", "plastic_strain", "yielding")
+
 
 @dataclass(frozen=True)
 class OutputSpec:
@@ -231,7 +234,7 @@ class OutputSpec:
     diagnostics_every: Optional[int] = None
     # what a viewer needs: ids, method/body, position, velocity, mass, density, stress
     # (vol = mass/rho and F are left out for size: add them by name)
-    fields: tuple = ("gid", "method", "body", "x", "v", "mass", "rho", "sigma")
+    fields: tuple = ("gid", "method", "body", "x", "v", "mass", "rho", "sigma")  # + PLASTIC_FIELDS
     precision: str = "single"           # float fields of snapshots: "single" or "double"
     folder: str = "output"
     checkpoint_every: int = 0           # steps between checkpoints (0: only on signal/failure)

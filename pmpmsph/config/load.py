@@ -15,7 +15,7 @@ from ..kernels.mpm.shape_functions.registry import shape_named
 from ..materials import material_from_table
 from ..physics.mpm.transfer_schemes import TRANSFER_SCHEMES
 from .case import (CONTACTS, SHAPES, TRANSFERS, VELOCITY_UPDATES, Case, CouplingSpec, MPMSpec,
-                   OutputSpec, ParallelSpec, TimeSpec)
+                   PLASTIC_FIELDS, OutputSpec, ParallelSpec, TimeSpec)
 from .conditions import _boundary, _damping, _load, _prescribed
 from .sections import (CASE_DIR, _body, _check_mpm_hydrostatic, _check_periodic, _domain,
                        _grid, _method_region, _sph)
@@ -267,7 +267,9 @@ def case_from_dict(data, name="case", text=""):
     every_steps = ot.number("every_steps", None, integer=True, min=1)
     if every is not None and every_steps is not None:
         raise ConfigError(ot.key("every_steps"), "give output.every or output.every_steps")
-    fields = ot.raw("fields", list(OutputSpec().fields))
+    fields = ot.raw("fields", list(OutputSpec().fields)
+                    + (list(PLASTIC_FIELDS) if any(m.plastic for m in materials.values())
+                       else []))
     if not isinstance(fields, list) or not all(isinstance(f, str) for f in fields):
         raise ConfigError(ot.key("fields"), "expected a list of field names")
     if not fields:

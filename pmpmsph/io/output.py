@@ -6,6 +6,7 @@ import os
 
 import numpy as np
 
+from .derived_fields import DERIVED, derived_field
 from .diagnostics import DIAG_COLUMNS, DiagnosticsCSV
 from .folders import check_output_folder, make_output_folder
 from .h5files import code_version
@@ -44,8 +45,8 @@ class Output:
         out = {}
         fields = self.case.output.fields
         for name in fields + tuple(k for k in ("gid", "x") if k not in fields):
-            if name == "rho" and "rho" not in p:
-                out["rho"] = p["mass"][:n] / p["vol"][:n]
+            if name not in p and name in DERIVED:
+                out[name] = derived_field(name, p, n, self.case)
             elif name in p:
                 arr = p[name][:n]
                 if name in ("x", "v") and self.dim < 3:  # XDMF geometry wants 3 components

@@ -11,6 +11,8 @@ the class attributes
     accepts_E_nu (mu, k) may be given as (E, nu) instead
     fluid        a fluid: SPH integrates its continuity density, not F (a trait)
     state_size   length of its per-particle internal state
+    plastic      a plasticity model: state[6] is the equivalent plastic strain and state[7]
+                 the flag of plastic flow in the last update (a trait; io/derived_fields.py)
 
 and defines `params(dim)`, a float64 vector of length NPAR with rho0 at PAR_RHO0, and
 `sound_speed(dim)` at rest. Plain Python (no numba).
@@ -62,6 +64,7 @@ class Material:
     accepts_E_nu: ClassVar[bool] = False
     fluid: ClassVar[bool] = False
     state_size: ClassVar[int] = 0
+    plastic: ClassVar[bool] = False
 
     @property
     def rho0(self):

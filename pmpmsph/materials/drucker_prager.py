@@ -17,7 +17,7 @@ volume change, the default). With trial state (s_t, p_t) and f_t > 0:
          tension; no stress at all once pulled apart).
 The equivalent plastic strain (state[6]) accumulates the deviatoric plastic strain
 sqrt(2/3) |dev de_p| = dgamma / sqrt(3) on the cone, (sqrt(J2_t))/(sqrt(3) G) at the
-apex. State as von_mises (Cp^-1, alpha); parameters
+apex. State as von_mises (Cp^-1, alpha, the flag of plastic flow); parameters
 ``[G, K, rho0, c, eta, xi, eta_bar, 0]``.
 
 The cone's tip is the tension cut-off: the largest mean stress is xi c / eta (0 without

@@ -342,8 +342,10 @@ def hencky_split(e):
 def store_return(F, V, p, G, m, d0, d1, d2, plastic, state, sigma):
     """The end of a return of the plasticity models: sigma = tau / J with the Kirchhoff stress
     tau = p 1 + 2 G dev e (principal deviatoric strains d_i in the directions V) and, after
-    plastic flow, the new plastic state from the elastic strains m + d_i."""
+    plastic flow, the new plastic state from the elastic strains m + d_i; state[7] = 1 after
+    plastic flow, else 0 (the `yielding` output field)."""
     store_principal(sigma, V, p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2,
                     1.0 / det3(F))
     if plastic:
         store_plastic_state(F, V, m + d0, m + d1, m + d2, state)
+    state[7] = 1.0 if plastic else 0.0

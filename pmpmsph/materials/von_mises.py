@@ -4,10 +4,12 @@ return map of Simo (1992, "Algorithms for static and dynamic multiplicative plas
 preserve the classical return mapping schemes of the infinitesimal theory", CMAME 99) and
 Simo & Hughes (Computational Inelasticity, 1998, Box 9.1).
 
-State (``STATE_SIZE = 7``): the inverse plastic right Cauchy-Green tensor Cp^-1 = Fp^-1
-Fp^-T as ``[xx, yy, zz, xy, yz, xz]`` (initially the identity) and the equivalent plastic
-strain alpha. Parameters ``[G, K, rho0, yield stress, H, 0, 0, 0]``: shear and bulk moduli
-(from E and nu), the initial yield stress sigma_y and the hardening modulus H.
+State (``STATE_SIZE = 8``): the inverse plastic right Cauchy-Green tensor Cp^-1 = Fp^-1
+Fp^-T as ``[xx, yy, zz, xy, yz, xz]`` (initially the identity), the equivalent plastic
+strain alpha and a flag, 1 where the last stress update flowed plastically (the output
+fields `plastic_strain` and `yielding`, io/derived_fields.py). Parameters
+``[G, K, rho0, yield stress, H, 0, 0, 0]``: shear and bulk moduli (from E and nu), the
+initial yield stress sigma_y and the hardening modulus H.
 
 One call of `stress_von_mises` with the updated F (the trial state is that of the last
 step, so every call starts again from it: the caller stores the state once per step):
@@ -41,7 +43,7 @@ from .base import IsotropicElastic, check_dim
 from .registry import Model, register
 from .tensor import hencky_split, hencky_trial, store_return
 
-STATE_SIZE = 7
+STATE_SIZE = 8
 VON_MISES = 7
 
 
@@ -93,6 +95,7 @@ class HenckyPlastic(IsotropicElastic):
     [G, K, rho0]): the state Cp^-1 = 1, alpha = 0 at the start, and the elastic wave speed."""
 
     state_size: ClassVar[int] = STATE_SIZE
+    plastic: ClassVar[bool] = True
 
     @property
     def bulk(self):
@@ -103,7 +106,7 @@ class HenckyPlastic(IsotropicElastic):
         return math.sqrt((self.bulk + 4.0 / 3.0 * self.mu) / self.rho)
 
     def initial_state(self):
-        return np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0], dtype=np.float64)
+        return np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0], dtype=np.float64)
 
 
 @dataclass(frozen=True)
@@ -125,7 +128,9 @@ class VonMises(HenckyPlastic):
         if not self.yield_stress > 0:
             raise ConfigError("yield_stress", f"must be > 0, got {self.yield_stress!r}")
         if not self.hardening >= 0:
-            raise ConfigError("hardening", f"must be >= 0, got {self.hardening!r}")
+            raise ConfigError("hardening", f"must be >= 0, got {self.hardening!r} (softening "
+                              "is not modelled: its tangent modulus E H / (E + H) is not "
+                              "positive)")
 
     def params(self, dim):
         check_dim(dim)
