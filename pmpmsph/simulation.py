@@ -176,11 +176,17 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         particle_sums(self.dim, p["x"][:n], p["v"][:n], p["mass"][:n], p["vol0"][:n],
                       p.deformation(n), p["mat"][:n], mtypes, mparams, mstate, self.gravity,
                       self._sums, self._mtag)
-        s = self.dist.sum(self._sums.copy())
+        sums = self._sums.copy()
+        if self.prescribed is not None:  # the reactions travel in the same collective
+            sums = np.concatenate([sums, self.prescribed.local_impulse()])
+        s = self.dist.sum(sums)
         k, u, pot = s[0], s[1], s[2]
-        return {"time": self.time, "step": self.step_count, "dt": self.dt, "kinetic": k,
-                "strain": u, "potential": pot, "total": k + u + pot, "px": s[3], "py": s[4],
-                "pz": s[5], "mass": s[6]}
+        row = {"time": self.time, "step": self.step_count, "dt": self.dt, "kinetic": k,
+               "strain": u, "potential": pot, "total": k + u + pot, "px": s[3], "py": s[4],
+               "pz": s[5], "mass": s[6]}
+        if self.prescribed is not None:
+            row.update(self.prescribed.reaction_row(s[len(self._sums):], self.dim))
+        return row
 
     # -- the step ----------------------------------------------------------------------------
     def step(self) -> None:

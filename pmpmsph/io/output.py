@@ -28,7 +28,13 @@ class Output:
                                      attrs={"case_name": self.case.name, "dim": self.dim,
                                             "code_version": code_version()},
                                      overwrite=True, **self._snapshot_format())
-        self.diag = DiagnosticsCSV(self.dist, csv, DIAG_COLUMNS, overwrite=True)
+        self.diag = DiagnosticsCSV(self.dist, csv, self.diagnostics_columns(), overwrite=True)
+
+    def diagnostics_columns(self):
+        """DIAG_COLUMNS, then the reactions of the `[[prescribed]]` constraints if any
+        (physics/loads.py PrescribedVelocity)."""
+        extra = self.prescribed.columns(self.dim) if self.prescribed is not None else ()
+        return DIAG_COLUMNS + extra
 
     def _snapshot_format(self):
         """Stored float type of this run's snapshots (io/snapshots.py). sigma keeps its full

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..errors import ConfigError, RunStopped
 from .checkpoint import read_header, read_rows, signal_name, write_checkpoint
-from .diagnostics import DIAG_COLUMNS, DiagnosticsCSV, truncate_rows
+from .diagnostics import DiagnosticsCSV, truncate_rows
 from .h5files import code_version
 from .snapshots import SnapshotWriter
 
@@ -187,5 +187,5 @@ class Restart:
             self._last_snapshot_step = self.step_count
         self._agree("--out", lambda: truncate_rows(csv, "step", self.step_count),
                     root_only=True)
-        self.diag = DiagnosticsCSV(self.dist, csv, DIAG_COLUMNS, append=True)
+        self.diag = DiagnosticsCSV(self.dist, csv, self.diagnostics_columns(), append=True)
         return True

@@ -55,7 +55,23 @@ class TractionLoads:
 
 
 class PrescribedVelocity:
-    """Particles of a body inside a region (at t = 0) with fixed velocity components."""
+    """Particles of a body inside a region (at t = 0) with fixed velocity components.
+
+    The reaction: the force each constraint applies to its particles to hold their velocity
+    (what a load cell in the actuator of a footing reads; minus the sum of every other force
+    on them: contact, internal, gravity), from the momentum it adds. In a step the particles
+    start at the prescribed velocity; the solver would end it at v_free, and the constraint
+    puts them back, adding sum m (v_prescribed - v_free) (MPM, whose transfers conserve
+    momentum, so this is exactly the momentum injected). An SPH stage holds them within the
+    step instead (`hold`), cancelling the force sum m acc of its last evaluation: the force
+    the step's velocity update used with the predictor-corrector (the default) and in the
+    mixed MPM-SPH step; Verlet and RK3 also use earlier evaluations, so there the impulse
+    of a step is that of its last evaluation (a half-step offset for Verlet: the mean over a
+    row of k steps is off by (R_end - R_start) / 2k). Summed over the steps between two
+    diagnostics rows and divided by the time between them, the impulses give the mean
+    reaction of `reaction_row` (tests/unit/test_reaction.py: the momentum balance of every
+    row to round-off, MPM and SPH).
+    """
 
     FIELDS = (FieldSpec("vpres_id", (), np.int32, fill=-1),)
 
@@ -63,6 +79,13 @@ class PrescribedVelocity:
         self.specs = specs
         self.particles = particles
         self.time = 0.0  # of the step being taken (the last `apply` at a step's start)
+        self.impulse = np.zeros((len(specs), 3))  # this rank's, since the last reaction row
+        self.elapsed = 0.0
+        self._held = np.zeros((len(specs), 3))  # the force `hold` cancelled in this step
+
+    def columns(self, dim):
+        """The diagnostics columns of the reactions: reaction{j}_x, ... per constraint j."""
+        return tuple(f"reaction{j}_{c}" for j in range(len(self.specs)) for c in "xyz"[:dim])
 
     @staticmethod
     def seed(specs, x, body_name):
@@ -93,11 +116,18 @@ class PrescribedVelocity:
                 gids, xs = x_before[j]  # keeps the position its stage gave it)
                 at = np.minimum(np.searchsorted(gids, p["gid"][sel]), max(len(gids) - 1, 0))
                 known = gids[at] == p["gid"][sel] if len(gids) else np.zeros(len(sel), bool)
+            mass = p["mass"][sel]
             for a, val in enumerate(s.velocity):
                 if val is not None:
+                    if x_before is not None:
+                        self.impulse[j, a] += (np.dot(mass, val - v[sel, a])
+                                               + dt * self._held[j, a])
                     v[sel, a] = val
                     if x_before is not None:
                         p.move(sel[known], a, xs[at[known], a] + dt * val)
+        if x_before is not None:
+            self.elapsed += dt
+            self._held[:] = 0.0
 
     def hold(self, acc):
         """Zero the prescribed components of the owned rows' accelerations `acc` (an SPH
@@ -108,12 +138,29 @@ class PrescribedVelocity:
         without end (docs/plate.md)."""
         n = self.particles.n_owned
         ids = self.particles["vpres_id"][:n]
+        mass = self.particles["mass"][:n]
         for j, s in enumerate(self.specs):
             if s.start <= self.time < s.until:
                 sel = ids == j
                 for a, val in enumerate(s.velocity):
                     if val is not None:
+                        self._held[j, a] = -np.dot(mass[sel], acc[:n, a][sel])
                         acc[:n, a][sel] = 0.0
+
+    def local_impulse(self):
+        """This rank's impulses since the last `reaction_row` (constraints x 3), then reset;
+        the caller sums them over the ranks (with its other diagnostics, one collective)."""
+        out = self.impulse.ravel().copy()
+        self.impulse[:] = 0.0
+        return out
+
+    def reaction_row(self, impulse, dim):
+        """The diagnostics columns (`columns`) from the ranks' summed `impulse`: the mean
+        reaction over the time since the last row (nan before the first step)."""
+        elapsed, self.elapsed = self.elapsed, 0.0
+        mean = (impulse.reshape(-1, 3) / elapsed if elapsed > 0.0
+                else np.full((len(self.specs), 3), np.nan))
+        return dict(zip(self.columns(dim), mean[:, :dim].ravel()))
 
     def positions(self):
         """(gids, positions) of each constraint's particles at the start of a step, sorted by
