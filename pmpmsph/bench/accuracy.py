@@ -28,10 +28,12 @@ from .accuracy_2d import DAM, DISKS, PLATE
 from .accuracy_core import COLUMNS, cost
 from .accuracy_fluids import CAVITY, COUETTE
 from .accuracy_fsi import PLATE_FSI
+from .accuracy_plastic import FOOTING
 
 
 def studies():
-    return [SPRING, DISKS, REVERSAL, STRESS, PLATE, BAR, DAM, CAVITY, COUETTE, PLATE_FSI]
+    return [SPRING, DISKS, REVERSAL, STRESS, PLATE, BAR, DAM, CAVITY, COUETTE, PLATE_FSI,
+            FOOTING]
 
 
 def run_point(dist, study, method, level, quick):
