@@ -1,6 +1,6 @@
 """Drucker-Prager plasticity (soils, granular materials) at finite strain, in the frame of
 materials/von_mises.py: the multiplicative split, Hencky elasticity and a return in the
-principal logarithmic strains of be = F Cp^-1 F^T. The return is that of de Souza Neto,
+principal logarithmic strains of the trial elastic be. The return is that of de Souza Neto,
 Peric & Owen (Computational Methods for Plasticity, 2008, Box 8.9: smooth cone, then apex)
 with constant cohesion.
 
@@ -17,7 +17,7 @@ volume change, the default). With trial state (s_t, p_t) and f_t > 0:
          tension; no stress at all once pulled apart).
 The equivalent plastic strain (state[6]) accumulates the deviatoric plastic strain
 sqrt(2/3) |dev de_p| = dgamma / sqrt(3) on the cone, (sqrt(J2_t))/(sqrt(3) G) at the
-apex. State as von_mises (Cp^-1, alpha, the flag of plastic flow); parameters
+apex. State as von_mises (be, alpha, the flag of plastic flow, Fn); parameters
 ``[G, K, rho0, c, eta, xi, eta_bar, 0]``.
 
 The cone's tip is the tension cut-off: the largest mean stress is xi c / eta (0 without
@@ -54,7 +54,7 @@ def stress_drucker_prager(F, L, dt, state, par, sigma):
     eta = par[4]
     xi = par[5]
     eta_bar = par[6]
-    e, V = hencky_trial(F, state)
+    e, V, be = hencky_trial(F, state)
     ev, m, d0, d1, d2 = hencky_split(e)
     p = K * ev
     root_j2 = math.sqrt(2.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # |2 G dev e|/sqrt 2
@@ -73,7 +73,7 @@ def stress_drucker_prager(F, L, dt, state, par, sigma):
         d1 *= scale
         d2 *= scale
         m = p / (3.0 * K)
-    store_return(F, V, p, G, m, d0, d1, d2, f > 0.0, state, sigma)
+    store_return(F, V, be, p, G, m, d0, d1, d2, f > 0.0, state, sigma)
 
 
 @njit(fastmath=False)
@@ -82,7 +82,7 @@ def energy_drucker_prager(F, state, par):
     volume (no hardening: the plastic work is all dissipated)."""
     G = par[0]
     K = par[1]
-    e, _ = hencky_trial(F, state)
+    e, _, _ = hencky_trial(F, state)
     ev, _, d0, d1, d2 = hencky_split(e)
     return 0.5 * K * ev * ev + G * (d0 * d0 + d1 * d1 + d2 * d2)
 

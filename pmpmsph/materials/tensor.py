@@ -299,13 +299,43 @@ def congruence(a, s):
 @njit(inline="always")
 def hencky_trial(F, state):
     """The trial state of the multiplicative plasticity models (materials/von_mises.py,
-    materials/drucker_prager.py): the principal logarithmic strains e_i = ln(lambda_i)/2 of
-    be = F Cp^-1 F^T, Cp^-1 the first six entries of `state` (xx, yy, zz, xy, yz, xz), and
-    their directions V (row-major 9-tuple, eigenvectors as columns)."""
-    f = (F[0, 0], F[0, 1], F[0, 2], F[1, 0], F[1, 1], F[1, 2], F[2, 0], F[2, 1], F[2, 2])
+    materials/drucker_prager.py): the elastic left Cauchy-Green tensor of the last stored
+    state, be (state[0:6], xx, yy, zz, xy, yz, xz), pushed forward by the relative
+    deformation f = F Fn^-1 since it was stored (Fn, state[8:17] row-major): the trial
+    be_t = f be f^T (Simo 1992, eq. 4.4). Returns the principal logarithmic strains
+    e_i = ln(lambda_i)/2 of be_t, their directions V (row-major 9-tuple, eigenvectors as
+    columns) and be_t itself.
+
+    Why the relative form, not be = F Cp^-1 F^T from the plastic Cp^-1: after long shear F
+    and Cp^-1 grow without bound while be stays near the identity, and the product loses
+    every digit (a sheared Drucker-Prager block reached entries of 1e3 in F, 1e6 in Cp^-1,
+    and NaN); f is near the identity every step and Fn^-1 is formed once, from a matrix of
+    determinant J."""
+    n00, n01, n02 = state[8], state[9], state[10]
+    n10, n11, n12 = state[11], state[12], state[13]
+    n20, n21, n22 = state[14], state[15], state[16]
+    c00 = n11 * n22 - n12 * n21  # cofactors of Fn: Fn^-1 = cof(Fn)^T / det Fn
+    c01 = n12 * n20 - n10 * n22
+    c02 = n10 * n21 - n11 * n20
+    c10 = n02 * n21 - n01 * n22
+    c11 = n00 * n22 - n02 * n20
+    c12 = n01 * n20 - n00 * n21
+    c20 = n01 * n12 - n02 * n11
+    c21 = n02 * n10 - n00 * n12
+    c22 = n00 * n11 - n01 * n10
+    r = 1.0 / (n00 * c00 + n01 * c01 + n02 * c02)
+    f = (r * (F[0, 0] * c00 + F[0, 1] * c01 + F[0, 2] * c02),
+         r * (F[0, 0] * c10 + F[0, 1] * c11 + F[0, 2] * c12),
+         r * (F[0, 0] * c20 + F[0, 1] * c21 + F[0, 2] * c22),
+         r * (F[1, 0] * c00 + F[1, 1] * c01 + F[1, 2] * c02),
+         r * (F[1, 0] * c10 + F[1, 1] * c11 + F[1, 2] * c12),
+         r * (F[1, 0] * c20 + F[1, 1] * c21 + F[1, 2] * c22),
+         r * (F[2, 0] * c00 + F[2, 1] * c01 + F[2, 2] * c02),
+         r * (F[2, 0] * c10 + F[2, 1] * c11 + F[2, 2] * c12),
+         r * (F[2, 0] * c20 + F[2, 1] * c21 + F[2, 2] * c22))
     be = congruence(f, (state[0], state[1], state[2], state[3], state[4], state[5]))
     w, V = sym_eigen(be[0], be[1], be[2], be[3], be[4], be[5])
-    return (0.5 * math.log(w[0]), 0.5 * math.log(w[1]), 0.5 * math.log(w[2])), V
+    return (0.5 * math.log(w[0]), 0.5 * math.log(w[1]), 0.5 * math.log(w[2])), V, be
 
 
 @njit(inline="always")
@@ -313,21 +343,6 @@ def store_principal(sigma, V, t0, t1, t2, scale):
     """sigma = scale V diag(t0, t1, t2) V^T (V a row-major 9-tuple of eigenvector columns)."""
     s = congruence(V, (scale * t0, scale * t1, scale * t2, 0.0, 0.0, 0.0))
     store_sym(sigma, s[0], s[1], s[2], s[3], s[4], s[5])
-
-
-@njit(inline="always")
-def store_plastic_state(F, V, e0, e1, e2, state):
-    """The plastic state after a return: Cp^-1 = F^-1 be F^-T with be = V diag(exp(2 e_i))
-    V^T (e_i the returned principal logarithmic elastic strains), into state[0:6]."""
-    be = congruence(V, (math.exp(2.0 * e0), math.exp(2.0 * e1), math.exp(2.0 * e2),
-                        0.0, 0.0, 0.0))
-    c = cofactor3(F)  # F^-T = cof(F) / J, so F^-1 = cof(F)^T / J
-    r = 1.0 / det3(F)
-    finv = (c[0] * r, c[3] * r, c[6] * r, c[1] * r, c[4] * r, c[7] * r,
-            c[2] * r, c[5] * r, c[8] * r)
-    cp = congruence(finv, be)
-    for i in range(6):
-        state[i] = cp[i]
 
 
 @njit(inline="always")
@@ -339,13 +354,20 @@ def hencky_split(e):
 
 
 @njit(inline="always")
-def store_return(F, V, p, G, m, d0, d1, d2, plastic, state, sigma):
+def store_return(F, V, be, p, G, m, d0, d1, d2, plastic, state, sigma):
     """The end of a return of the plasticity models: sigma = tau / J with the Kirchhoff stress
-    tau = p 1 + 2 G dev e (principal deviatoric strains d_i in the directions V) and, after
-    plastic flow, the new plastic state from the elastic strains m + d_i; state[7] = 1 after
-    plastic flow, else 0 (the `yielding` output field)."""
+    tau = p 1 + 2 G dev e (principal deviatoric strains d_i in the directions V), and the
+    state the next call starts from: be (the trial `be` after an elastic step; after plastic
+    flow V diag(exp(2 (m + d_i))) V^T, the returned elastic strains), Fn = F, and
+    state[7] = 1 after plastic flow, else 0 (the `yielding` output field)."""
     store_principal(sigma, V, p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2,
                     1.0 / det3(F))
     if plastic:
-        store_plastic_state(F, V, m + d0, m + d1, m + d2, state)
+        be = congruence(V, (math.exp(2.0 * (m + d0)), math.exp(2.0 * (m + d1)),
+                            math.exp(2.0 * (m + d2)), 0.0, 0.0, 0.0))
+    for i in range(6):
+        state[i] = be[i]
+    for a in range(3):
+        for b in range(3):
+            state[8 + 3 * a + b] = F[a, b]
     state[7] = 1.0 if plastic else 0.0

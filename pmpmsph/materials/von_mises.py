@@ -4,25 +4,27 @@ return map of Simo (1992, "Algorithms for static and dynamic multiplicative plas
 preserve the classical return mapping schemes of the infinitesimal theory", CMAME 99) and
 Simo & Hughes (Computational Inelasticity, 1998, Box 9.1).
 
-State (``STATE_SIZE = 8``): the inverse plastic right Cauchy-Green tensor Cp^-1 = Fp^-1
-Fp^-T as ``[xx, yy, zz, xy, yz, xz]`` (initially the identity), the equivalent plastic
-strain alpha and a flag, 1 where the last stress update flowed plastically (the output
-fields `plastic_strain` and `yielding`, io/derived_fields.py). Parameters
-``[G, K, rho0, yield stress, H, 0, 0, 0]``: shear and bulk moduli (from E and nu), the
-initial yield stress sigma_y and the hardening modulus H.
+State (``STATE_SIZE = 17``): the elastic left Cauchy-Green tensor be = Fe Fe^T as
+``[xx, yy, zz, xy, yz, xz]`` (initially the identity), the equivalent plastic strain alpha,
+a flag, 1 where the last stress update flowed plastically (the output fields
+`plastic_strain` and `yielding`, io/derived_fields.py), and the F at which be was stored
+(row-major, state[8:17]). Parameters ``[G, K, rho0, yield stress, H, 0, 0, 0]``: shear and
+bulk moduli (from E and nu), the initial yield stress sigma_y and the hardening modulus H.
 
 One call of `stress_von_mises` with the updated F (the trial state is that of the last
 step, so every call starts again from it: the caller stores the state once per step):
-1. trial elastic left Cauchy-Green tensor be = F Cp^-1 F^T, its eigen-pairs (lambda_i, n_i)
-   and logarithmic strains e_i = ln(lambda_i)/2 (Simo 1992, eq. 4.7);
+1. trial elastic left Cauchy-Green tensor be_t = f be f^T with the relative deformation
+   f = F Fn^-1 since the state was stored (Simo 1992, eq. 4.4; `tensor.hencky_trial` says
+   why not F Cp^-1 F^T), its eigen-pairs (lambda_i, n_i) and logarithmic strains
+   e_i = ln(lambda_i)/2 (Simo 1992, eq. 4.7);
 2. Hencky energy psi = K/2 (tr e)^2 + G |dev e|^2 + H alpha^2/2, Kirchhoff stress
-   tau = K tr e 1 + 2 G dev e, coaxial with be;
+   tau = K tr e 1 + 2 G dev e, coaxial with be_t;
 3. yield function f = q - (sigma_y + H alpha), q = sqrt(3/2) |dev tau| (the Mises stress of
    tau); if f > 0 the radial return of the small-strain theory, exact in these
    variables: dgamma = f / (3 G + H), dev e scaled by 1 - 3 G dgamma / q, alpha += dgamma
    (Simo & Hughes, Box 9.1, steps 3-4);
-4. sigma = tau / J; be = sum exp(2 e_i) n_i n_i^T and Cp^-1 = F^-1 be F^-T stored.
-The plastic flow keeps det Cp = 1 (tr of the return's increment is 0), so tr e = ln J.
+4. sigma = tau / J; be = sum exp(2 e_i) n_i n_i^T and Fn = F stored.
+The plastic flow keeps det be = J^2 (tr of the return's increment is 0), so tr e = ln J.
 
 In plane strain (2D) and uniaxial strain (1D) F has unit out-of-plane entries and the same
 formulas apply (the out-of-plane plastic strain evolves). The wave speed for the time step
@@ -43,7 +45,7 @@ from .base import IsotropicElastic, check_dim
 from .registry import Model, register
 from .tensor import hencky_split, hencky_trial, store_return
 
-STATE_SIZE = 8
+STATE_SIZE = 17
 VON_MISES = 7
 
 
@@ -54,7 +56,7 @@ def stress_von_mises(F, L, dt, state, par, sigma):
     K = par[1]
     yield0 = par[3]
     H = par[4]
-    e, V = hencky_trial(F, state)
+    e, V, be = hencky_trial(F, state)
     ev, m, d0, d1, d2 = hencky_split(e)
     q = math.sqrt(6.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # sqrt(3/2) |2 G dev e|
     alpha = state[6]
@@ -66,7 +68,7 @@ def stress_von_mises(F, L, dt, state, par, sigma):
         d1 *= scale
         d2 *= scale
         state[6] = alpha + dgamma
-    store_return(F, V, K * ev, G, m, d0, d1, d2, excess > 0.0, state, sigma)
+    store_return(F, V, be, K * ev, G, m, d0, d1, d2, excess > 0.0, state, sigma)
 
 
 @njit(fastmath=False)
@@ -76,7 +78,7 @@ def energy_von_mises(F, state, par):
     G = par[0]
     K = par[1]
     H = par[4]
-    e, _ = hencky_trial(F, state)
+    e, _, _ = hencky_trial(F, state)
     ev, _, d0, d1, d2 = hencky_split(e)
     dev2 = d0 * d0 + d1 * d1 + d2 * d2
     return 0.5 * K * ev * ev + G * dev2 + 0.5 * H * state[6] * state[6]
@@ -92,7 +94,8 @@ def wave_speed_hencky_plastic(par, J):
 @dataclass(frozen=True)
 class HenckyPlastic(IsotropicElastic):
     """What the plasticity models in this frame share (E, nu, rho; parameters begin
-    [G, K, rho0]): the state Cp^-1 = 1, alpha = 0 at the start, and the elastic wave speed."""
+    [G, K, rho0]): the state be = 1, alpha = 0, Fn = 1 at the start, and the elastic wave
+    speed."""
 
     state_size: ClassVar[int] = STATE_SIZE
     plastic: ClassVar[bool] = True
@@ -106,7 +109,10 @@ class HenckyPlastic(IsotropicElastic):
         return math.sqrt((self.bulk + 4.0 / 3.0 * self.mu) / self.rho)
 
     def initial_state(self):
-        return np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0], dtype=np.float64)
+        state = np.zeros(STATE_SIZE)
+        state[:3] = 1.0  # be
+        state[8:17:4] = 1.0  # Fn
+        return state
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ from pmpmsph.materials import MODELS, material_from_table
 from pmpmsph.materials.dispatch import compute_stress, strain_energy, wave_speed
 from pmpmsph.materials.tensor import sym_eigen
 from pmpmsph.materials.von_mises import VonMises
+from plastic_state import assert_rotated, elastic_b
 
 MAT = VonMises(E=200e9, nu=0.3, rho=7800.0, yield_stress=250e6, hardening=2e9)
 G, K = MAT.mu, MAT.bulk
@@ -56,7 +57,8 @@ def test_registered_by_its_own_module():
     assert MODELS["von_mises"] is VonMises and MODELS["j2"] is VonMises
     state = MAT.initial_state()
     assert np.all(step(np.eye(3), state) == 0.0) and energy(np.eye(3), state) == 0.0
-    assert np.array_equal(state, [1, 1, 1, 0, 0, 0, 0])
+    # be = 1, alpha = 0, no plastic flow, Fn = 1
+    assert np.array_equal(state, [1, 1, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1])
 
 
 def test_eigen_pairs_to_round_off():
@@ -105,7 +107,8 @@ def test_elastic_range_is_hencky_elasticity():
     tau = K * np.trace(e) * np.eye(3) + 2.0 * G * (e - np.trace(e) / 3.0 * np.eye(3))
     assert mises(tau) < MAT.yield_stress and state[6] == 0.0
     assert np.abs(sigma - tau / J).max() < 1e-9 * np.abs(tau).max()
-    assert np.array_equal(state[:6], [1, 1, 1, 0, 0, 0])  # no plastic flow, no change
+    # no plastic flow: be = F F^T
+    assert np.abs(elastic_b(state) - F @ F.T).max() < 1e-15 and state[7] == 0.0
 
 
 def test_returns_onto_the_yield_surface_and_dissipates():
@@ -134,14 +137,15 @@ def test_returns_onto_the_yield_surface_and_dissipates():
                                              rel=1e-6, abs=1e-12 * ref)
             else:
                 assert mises(tau) <= MAT.yield_stress + MAT.hardening * state[6]
-            c = state[:6]
-            Cinv = np.array([[c[0], c[3], c[5]], [c[3], c[1], c[4]], [c[5], c[4], c[2]]])
-            assert np.linalg.det(Cinv) == pytest.approx(1.0, abs=1e-12)
+            # isochoric plastic flow: det be = J^2
+            assert np.linalg.det(elastic_b(state)) == pytest.approx(np.linalg.det(F) ** 2,
+                                                                    rel=1e-12)
     assert plastic > 100  # the paths went well into plastic flow
 
 
 def test_objective_under_a_superposed_rotation():
-    """F -> Q F along the same path: sigma -> Q sigma Q^T, the same plastic state."""
+    """F -> Q F along the same path: sigma -> Q sigma Q^T, the same plastic state (be
+    rotated, alpha the same)."""
     rng = np.random.default_rng(11)
     path = random_path(rng, 40, 5e-4)
     Q = random_rotation(rng)
@@ -151,7 +155,7 @@ def test_objective_under_a_superposed_rotation():
         b = step(Q @ F, s2)
     assert s1[6] > 0.0
     assert np.abs(b - Q @ a @ Q.T).max() < 1e-9 * np.abs(a).max()
-    assert np.abs(s2 - s1).max() < 1e-12
+    assert_rotated(s2, s1, Q)
 
 
 def test_perfect_plasticity_and_wave_speed():
@@ -213,3 +217,20 @@ def test_two_bars_collide_and_yield(method):
     assert abs(d["px"]) < 1e-8 * mv  # (MPM: 2e-9, the nodes under the mass cut-off)
     assert 0.05 < alpha.mean() < 0.3 and alpha.max() < 1.0
     assert d["total"] < 0.2 * e0
+
+
+def test_long_simple_shear_keeps_every_digit():
+    """Simple shear to gamma = 1000 in steps of 0.01 (perfectly plastic): the stress stays on
+    the yield surface to round-off and det be = J^2 = 1. With the state stored as the plastic
+    Cp^-1 (be = F Cp^-1 F^T) the entries of F and Cp^-1 grow as gamma and gamma^2 and the
+    product lost every digit: a sheared Drucker-Prager block ended in NaN."""
+    mat = VonMises(E=1e7, nu=0.3, rho=2000.0, yield_stress=1e4)
+    state = mat.initial_state()
+    F = np.eye(3)
+    for _ in range(100_000):
+        F[0, 1] += 0.01
+        sigma = step(F, state, mat)
+    assert F[0, 1] == pytest.approx(1000.0)
+    assert mises(sigma) == pytest.approx(mat.yield_stress, rel=1e-10)  # J = 1: sigma = tau
+    assert np.linalg.det(elastic_b(state)) == pytest.approx(1.0, rel=1e-10)
+    assert state[6] == pytest.approx(1000.0 / math.sqrt(3.0), rel=1e-3)  # gamma / sqrt 3
