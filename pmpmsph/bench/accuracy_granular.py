@@ -19,11 +19,16 @@ the error does not go to 0 as the resolution grows; it measures the model (a
 rate-independent Drucker-Prager continuum with a fixed friction angle, no side walls), not
 the discretisation.
 """
+import argparse
+import json
+import tomllib
 from pathlib import Path
 
 import numpy as np
+from mpi4py import MPI
 
-from ..config.load import load_case_file
+from ..config.load import case_from_dict, load_case_file
+from ..parallel.distributor import Distributor
 from ..simulation import Simulation
 from .accuracy_core import advance, gathered
 
@@ -35,6 +40,7 @@ END_FACTOR = 5.6  # the run ends at END_FACTOR sqrt(H0 / g): at rest (0.8 s at a
 THICK, BIN = 0.1, 0.05  # the thickness front: deposit >= THICK L0, binned over BIN L0
 PERCENT = 99.5
 KE_EVERY = 20  # steps between kinetic-energy samples
+LAYERS = 3  # SPH: layers of held particles making the floor and the wall
 
 
 def lube_runout(a):
@@ -80,18 +86,43 @@ def runouts(x, y, spacing, l0=L0):
 
 def column(dist, cell, a=2.0, shape="gimp", transfer="usl", update="apic", end=None,
            method="mpm"):
-    """The collapse of the a-column (L0 = 0.1 m) in MPM cells of `cell`; ends at
-    END_FACTOR sqrt(H0 / g) unless `end` is given."""
+    """The collapse of the a-column (L0 = 0.1 m) in MPM cells of `cell` (2 x 2 particles
+    each), or (method "sph") as an SPH body of particles cell / 2 apart, the same count;
+    ends at END_FACTOR sqrt(H0 / g) unless `end` is given."""
     h0 = a * L0
     end = END_FACTOR * np.sqrt(h0 / G) if end is None else end
-    if method != "mpm":
-        raise ValueError(f"no column for {method!r}")
+    if method == "sph":
+        return Simulation(sph_case(cell / PPC, a, end), dist=dist, write_output=False)
     over = [("grid.cell_size", cell),
             ("grid.cells", [int(np.ceil(domain_length(a) * L0 / cell - 1e-9)),
                             int(np.ceil(h0 / cell - 1e-9)) + 2]),
             ("bodies[0].max", [L0, h0]), ("mpm.shape", shape), ("mpm.transfer", transfer),
             ("mpm.velocity_update", update), ("time.end", end)]
     return Simulation(load_case_file(CASE, over), dist=dist, write_output=False)
+
+
+def sph_case(spacing, a, end):
+    """The case file's column as an updated-Lagrangian SPH body (Wendland C2, h = 1.3
+    spacings, predictor-corrector): SPH walls are for fluids, so the floor is LAYERS
+    layers of sand particles below y = 0 held at rest (a rough floor, where the MPM one
+    has Coulomb friction: at L0 / 20 a fixed MPM floor moves the percentile front by 1 %),
+    and the wall LAYERS layers behind x = 0 held in x only (they slide freely along it: a
+    slip wall). The column is body 0."""
+    with open(CASE, "rb") as fh:
+        d = tomllib.load(fh)
+    h0, xl, t = a * L0, domain_length(a) * L0, LAYERS * spacing
+    for k in ("grid", "mpm", "boundaries"):
+        del d[k]
+    d["domain"] = {"min": [-2.0 * t, -2.0 * t], "max": [xl + 2.0 * t, h0 + 2.0 * t + 0.5 * L0]}
+    d["sph"] = {"kernel": "wendland", "h_factor": 1.3}
+    box = dict(method="sph", material="sand", shape="box", spacing=spacing)
+    d["bodies"] = [dict(box, name="column", min=[0.0, 0.0], max=[L0, h0]),
+                   dict(box, name="floor", min=[-t, -t], max=[xl, 0.0]),
+                   dict(box, name="wall", min=[-t, 0.0], max=[0.0, h0])]
+    d["prescribed"] = [{"body": "floor", "velocity": [0.0, 0.0]},
+                       {"body": "wall", "velocity": [0.0, "free"]}]
+    d["time"] = {"end": end, "cfl": 0.3}
+    return case_from_dict(d, name="column_collapse_sph")
 
 
 def collapse(sim, spacing, l0=L0):
@@ -109,7 +140,8 @@ def collapse(sim, spacing, l0=L0):
     ke.append((d["time"], d["kinetic"]))
     t, k = np.array(ke).T
     moving = t[k > 1e-4 * k.max()]
-    x = gathered(sim, ["x"])["x"]
+    g = gathered(sim, ["x", "body"])
+    x = g["x"][g["body"] == 0]  # the column (SPH: not the held floor and wall)
     thick, pct = runouts(x[:, 0], x[:, 1], spacing, l0)
     return {"thickness": thick, "percentile": pct, "ke_peak": float(k.max()),
             "ke_end": float(d["kinetic"]), "rest": float(moving[-1]) if moving.size else 0.0,
@@ -118,7 +150,7 @@ def collapse(sim, spacing, l0=L0):
 
 def run_column(dist, m, cell, quick, a=2.0):
     sim = column(dist, cell, a, m.get("shape", "gimp"), m.get("transfer", "usl"),
-                 m.get("update", "apic"))
+                 m.get("update", "apic"), method="sph" if m["family"] == "SPH UL" else "mpm")
     res = collapse(sim, cell / PPC)
     ref = lube_runout(a)
     return sim, res["seconds"], {"error": abs(res["thickness"] / ref - 1.0),
@@ -140,3 +172,32 @@ COLUMN = dict(
     run=run_column,
     not_applicable={"SPH TL": "the sand flows far from its reference configuration",
                     "coupled": "one body of sand: nothing to hand over"})
+
+
+def main(argv=None):
+    """`python -m pmpmsph.bench.accuracy_granular [--a A] [--cell C] [--method M] [--end T]`:
+    one collapse on one rank; prints the runouts, the time to rest and the seconds."""
+    ap = argparse.ArgumentParser(prog="python -m pmpmsph.bench.accuracy_granular")
+    ap.add_argument("--a", type=float, default=2.0, help="aspect H0 / L0 (2)")
+    ap.add_argument("--cell", type=float, default=0.005, help="MPM cell size (0.005 = L0/20)"
+                    "; SPH: twice the particle spacing")
+    ap.add_argument("--method", default="gimp,usl,apic",
+                    help='"shape,transfer,update" for MPM (gimp,usl,apic), or "sph"')
+    ap.add_argument("--end", type=float, default=None, help="end time (5.6 sqrt(H0 / g))")
+    args = ap.parse_args(argv)
+    dist = Distributor(MPI.COMM_WORLD)
+    if args.method == "sph":
+        sim = column(dist, args.cell, args.a, end=args.end, method="sph")
+    else:
+        shape, transfer, update = args.method.split(",")
+        sim = column(dist, args.cell, args.a, shape, transfer, update, end=args.end)
+    res = collapse(sim, args.cell / PPC)
+    res.update(a=args.a, cell=args.cell, method=args.method, lube=lube_runout(args.a),
+               end=sim.time, particles=int(dist.sum(sim.particles.n_owned)))
+    if dist.is_root:
+        print(json.dumps(res, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -10,6 +10,7 @@ quasi-2D 2.4 (the rate-independent continuum overshoots at a >= 2):
     L0 / 40   2.80 (bench only)               4.19 (bench only)
 
 CI runs L0 / 10 and L0 / 20 (~15 s of stepping) through bench/accuracy_granular.py."""
+import numpy as np
 import pytest
 from mpi4py import MPI
 
@@ -26,7 +27,6 @@ def collapsed(cell):
 
 def test_fronts_of_a_known_deposit():
     # a rectangle 0.3 wide, 0.02 tall, particles 0.005 apart: both fronts at its edge
-    import numpy as np
     s = 0.005
     x, y = np.meshgrid(np.arange(s / 2, 0.3, s), np.arange(s / 2, 0.02, s))
     thick, pct = runouts(x.ravel(), y.ravel(), s)
