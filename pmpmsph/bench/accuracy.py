@@ -1,9 +1,10 @@
 """`python -m pmpmsph.bench accuracy [--quick] [--scenes KEY ...] [--out DIR] [--readme]`.
 
-The accuracy-cost map of BENCHMARKS.md "Speed against error": for scenes 1, 3, 8, 9, 12, 14
-and the dam-break front, every method that applies is run at every resolution of the
-scene's knob (the studies in `accuracy_1d` / `accuracy_2d` define the metric, reference and
-methods), and each point's error, wall time, particle-steps and memory are recorded.
+The accuracy-cost map of BENCHMARKS.md "Speed against error": for scenes 1, 3, 8, 9, 12, 14,
+the dam-break front, the Prandtl footing and the granular column collapse, every method that
+applies is run at every resolution of the scene's knob (the studies in `accuracy_1d`,
+`accuracy_2d`, ... define the metric, reference and methods), and each point's error, wall
+time, particle-steps and memory are recorded.
 
 Every point runs on the communicator it is given (all ranks of `mpirun -n N` together, the
 normal `Simulation`), wall time is the slowest rank's, rank 0 writes: DIR/<scene>.csv,
@@ -28,12 +29,13 @@ from .accuracy_2d import DAM, DISKS, PLATE
 from .accuracy_core import COLUMNS, cost
 from .accuracy_fluids import CAVITY, COUETTE
 from .accuracy_fsi import PLATE_FSI
+from .accuracy_granular import COLUMN
 from .accuracy_plastic import FOOTING
 
 
 def studies():
     return [SPRING, DISKS, REVERSAL, STRESS, PLATE, BAR, DAM, CAVITY, COUETTE, PLATE_FSI,
-            FOOTING]
+            FOOTING, COLUMN]
 
 
 def run_point(dist, study, method, level, quick):

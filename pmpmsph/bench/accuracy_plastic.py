@@ -19,14 +19,15 @@ AT, HALF_WINDOW = 0.05, 0.005  # the settlement / B read, and the window average
 ROW_STEPS = 25
 
 
-def footing(dist, family, cell, shape="gimp", end=None):
+def footing(dist, family, cell, shape="gimp", fbar=True, end=None):
     """The footing's Simulation at cell size (MPM) or spacing (SPH) `cell`, and the length
-    of footing its reaction holds (b = B/2 for the MPM half model, B for the SPH one)."""
+    of footing its reaction holds (b = B/2 for the MPM half model, B for the SPH one).
+    MPM: `shape`, and `fbar` (the case's F-bar, kernels/mpm/fbar.py) on or off."""
     end = (AT + HALF_WINDOW) * WIDTH / SPEED if end is None else end
     if family == "MPM":
         over = [("grid.cell_size", cell),
                 ("grid.cells", [int(round(3.0 / cell)), int(round(2.2 / cell))]),
-                ("mpm.shape", shape), ("time.end", end)]
+                ("mpm.shape", shape), ("mpm.fbar", fbar), ("time.end", end)]
         case, held = load_case_file(CASES / "prandtl_footing.toml", over), 0.5 * WIDTH
     else:
         over = [("bodies[0].spacing", cell), ("bodies[1].spacing", cell), ("time.end", end)]
@@ -55,7 +56,7 @@ def level_at(s, q, at, half=HALF_WINDOW):
 
 
 def run_footing(dist, m, cell, quick):
-    sim, held = footing(dist, m["family"], cell, m.get("shape", "gimp"))
+    sim, held = footing(dist, m["family"], cell, m.get("shape", "gimp"), m.get("fbar", True))
     s, q, secs = pressure_curve(sim, held, sim.case.time.end)
     level = level_at(s, q, AT)
     return sim, secs, {"error": abs(level - 1.0), "aux": level,
@@ -69,9 +70,12 @@ FOOTING = dict(
            "settlements 0.045 ... 0.055 B (the reaction of the held footing); aux = q / "
            "((2 + pi) c_u)",
     aux="q / q_lim", knob="cell size or spacing / B",
-    methods=[dict(label="MPM gimp usl", family="MPM", shape="gimp", transfer="usl",
+    methods=[dict(label="MPM gimp usl fbar", family="MPM", shape="gimp", transfer="usl",
                   quick=True),
-             dict(label="MPM quadratic usl", family="MPM", shape="quadratic", transfer="usl"),
+             dict(label="MPM gimp usl", family="MPM", shape="gimp", transfer="usl",
+                  fbar=False),
+             dict(label="MPM quadratic usl fbar", family="MPM", shape="quadratic",
+                  transfer="usl"),
              dict(label="SPH UL wendland PEC", family="SPH UL")],
     levels={"full": [0.1, 0.05, 0.025], "quick": [0.1]}, knob_of=lambda cell: cell / WIDTH,
     run=run_footing,

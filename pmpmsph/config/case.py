@@ -67,6 +67,7 @@ class MPMSpec:
     friction: float = 0.0      # Coulomb coefficient of multi-field contact
     cpdi_reach: int = 2        # CPDI: the largest domain half-extent (cells) the grid covers
     hydrostatic: bool = False  # MPM fluid bodies start at rest in the hydrostatic state
+    fbar: bool = False         # F-bar: the plastic materials' J averaged over the nodes
     deformation: str = "auto"  # what an MPM particle stores of its motion: "F" (the full
     # deformation gradient) or "J" (its determinant only; enough for fluids, whose stress
     # depends on J and the velocity gradient); "auto": J when every MPM material is a fluid

@@ -136,6 +136,7 @@ def case_from_dict(data, name="case", text=""):
         cpdi_reach=mpm_t.number("cpdi_reach", 2, integer=True, min=1, max=8),
         deformation=mpm_t.string("deformation", "auto", choices=("auto", "F", "J")),
         hydrostatic=mpm_t.boolean("hydrostatic", False),
+        fbar=mpm_t.boolean("fbar", False),
     )
     if mpm.velocity_update != "flip" and mpm_t.has("flip"):
         raise ConfigError(mpm_t.key("flip"), "applies to velocity_update = \"flip\" only "
@@ -181,6 +182,10 @@ def case_from_dict(data, name="case", text=""):
     if coupling.handover and not regions:
         raise ConfigError("coupling.handover", "handover needs [[regions]] to hand over at")
     methods = {b.method for b in bodies} | {r.method for r in regions}
+    if mpm.fbar and not any(materials[b.material].plastic for b in bodies
+                            if b.method == "mpm" or regions):
+        raise ConfigError("mpm.fbar", "averages the volume change of plastic materials "
+                          "(von_mises, drucker_prager) and no MPM body has one")
     has_sph = "sph" in methods
     coupled = has_sph and "mpm" in methods
     if coupled and grid is None:

@@ -13,11 +13,12 @@ FIELDS = ("x", "v", "sigma", "F", "mstate")
 SAND = dict(model="drucker_prager", E=2e6, nu=0.3, rho=1500.0, friction_angle=30.0)
 
 
-def column_3d():
-    """A 4 x 8 x 6 cm column on a friction floor between slip walls in z (MPM, GIMP, APIC)."""
+def column_3d(fbar=False):
+    """A 4 x 8 x 6 cm column on a friction floor between slip walls in z (MPM, GIMP, APIC;
+    `fbar`: F-bar, whose nodal averages are summed over the ranks like every nodal sum)."""
     sc = Scene(3, time=dict(end=1.0, cfl=0.5), gravity=[0.0, -9.81, 0.0],
                grid=dict(origin=[0.0, 0.0, 0.0], cell_size=0.01, cells=[16, 10, 6]),
-               mpm=dict(shape="gimp", transfer="usl", velocity_update="apic"),
+               mpm=dict(shape="gimp", transfer="usl", velocity_update="apic", fbar=fbar),
                parallel=dict(axis="x", balance_every=20),
                boundaries=[dict(face="x-", type="slip"), dict(face="z-", type="slip"),
                            dict(face="z+", type="slip"),
@@ -43,8 +44,13 @@ def column_sph():
     return sc
 
 
-@pytest.mark.parametrize("make, steps", [(column_3d, 900), (column_sph, 2500)],
-                         ids=["mpm_3d", "sph_2d"])
+def column_3d_fbar():
+    return column_3d(fbar=True)
+
+
+@pytest.mark.parametrize("make, steps", [(column_3d, 900), (column_3d_fbar, 900),
+                                         (column_sph, 2500)],
+                         ids=["mpm_3d", "mpm_3d_fbar", "sph_2d"])
 def test_collapsing_column_equals_one_rank(make, steps):
     dist = world()
     sim = make().simulation(dist=dist)

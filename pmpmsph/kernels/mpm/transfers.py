@@ -191,7 +191,7 @@ def grid_velocity(dim, gmass, gmom, gforce, gvel, gdv, dt, gravity, damping, mas
 
 @njit
 def g2p(tags, points, materials, layout, options, gvel, gdv=None, F=None, lp=None, Fdom=None,
-        pfield=None, prestress=None, Lp=None):
+        pfield=None, prestress=None, Lp=None, stress_later=None):
     """Gather from the grid (eqs. 80-86) for every particle of `points` (kernels/mpm/views.py
     `gather_points`), with `materials` (`material_table`), the nodes of `layout` (`grid_layout`)
     and the step's `options` (`gather_options`); the names below are the bundles' members.
@@ -217,6 +217,9 @@ def g2p(tags, points, materials, layout, options, gvel, gdv=None, F=None, lp=Non
     compile time.
     `Lp` (n, 3, 3), when given with `gdv = None`, is each particle's velocity gradient,
     gathered already (`kernels.mpm.affine.g2p_affine`): the grid is not read.
+    `stress_later` (a flag per material, or None: every stress here) leaves the stress and
+    the material state of the flagged materials' particles to a later pass (F-bar,
+    `kernels.mpm.fbar`: their F and vol are updated here, then averaged).
     """
     dim_tag, kind_tag = tags
     x, v, sigma, vol, vol0, mat, mstate = points
@@ -376,6 +379,8 @@ def g2p(tags, points, materials, layout, options, gvel, gdv=None, F=None, lp=Non
                 c = wave_speed_tagged(mat_tag, mtypes[mi], mparams[mi], J) + np.sqrt(speed)
                 if not (c <= signal):  # NaN propagates (no finite dt from a broken state)
                     signal = c
+            if stress_later is not None and stress_later[mi]:  # (F-bar: after the volume
+                continue                                       # average, `kernels.mpm.fbar`)
             # straight into the particle's row unless a pre-stress is added (the models
             # only write their output)
             out = sig if prestress is not None else sigma[p]

@@ -18,7 +18,8 @@ from contextlib import contextmanager
 import numpy as np
 
 from ...kernels.mpm.contact import contact_normals, multi_field_contact, surface_reach
-from ...kernels.coupling import gather_increment, grid_force_kick
+from ...kernels.coupling import add_gathered, gather_increment, grid_force_kick
+from ...kernels.mpm.fbar import fbar_stress
 from ...kernels.mpm.transfers import FOLDED, MOMENTUM, WITH_FORCE, g2p, grid_velocity, p2g
 from ...kernels.mpm.affine import g2p_affine, p2g_affine
 from ...kernels.mpm.views import (NO_AFFINE, gather_options, gather_points, material_table,
@@ -102,6 +103,12 @@ class MPMStage:
         self._grad = np.zeros((0, 3, 3))
         # only a CFL time step reads it (`Simulation.signal_speed`); a sqrt per particle else
         self.want_signal = case.time.cfl is not None
+        # F-bar (`[mpm] fbar`, kernels/mpm/fbar.py): which materials' J is averaged; scratch
+        self.averaged = (np.array([m.plastic for m in case.materials.values()])
+                         if spec.fbar else None)
+        self._fbar_rows = np.zeros((0, self.dim))
+        self._fbar_weight = np.zeros(0)
+        self._fbar_nodes = ()
 
     @property
     def n_p2g(self):
@@ -362,13 +369,48 @@ class MPMStage:
                                   self.want_signal),
                     g.vel, gdv=g.dv if blend else None,
                     F=p.deformation(n) if deformation else None, lp=lp,
-                    Fdom=self._domain_F(n), pfield=pfield, prestress=pre, Lp=Lp)
+                    Fdom=self._domain_F(n), pfield=pfield, prestress=pre, Lp=Lp,
+                    stress_later=self.averaged if deformation else None)
+                bad = bad if bad >= 0 else bad2
+            if deformation and self.averaged is not None:
+                bad2 = self._fbar(dt, n, lp, pfield, pre, mstate)
                 bad = bad if bad >= 0 else bad2
         # max (c + |v|) of the owned rows, valid when this pass has the final velocities
         # too: USL's single pass and MUSL's second; after USF's first pass v changes again
         if deformation and (kinematics or self.scheme.signal_after_deformation):
             self.signal = signal
         return bad
+
+    def _fbar(self, dt, n, lp, pfield, pre, mstate):
+        """F-bar for the plastic rows after G2P updated their F (kernels/mpm/fbar.py): a
+        P2G of weights vol0 and vol0 J, their ghost-node sums, the nodal average gathered
+        back, then F scaled to it and the stress. Returns a failed row or -1."""
+        g, p = self.grid, self.p
+        self._fbar_rows = rows_at_least(self._fbar_rows, n)
+        self._fbar_weight = rows_at_least(self._fbar_weight, n)
+        rows = self._fbar_rows[:n]  # J (as a "velocity"), then the gathered J_bar
+        weight = self._fbar_weight[:n]
+        vol, vol0, mat = p["vol"][:n], p["vol0"][:n], p["mat"][:n]
+        np.multiply(vol0, self.averaged[mat], out=weight)
+        rows[:, 0] = vol / vol0
+        if len(self._fbar_nodes) == 0 or self._fbar_nodes[0].shape != g.mass.shape:
+            self._fbar_nodes = (np.zeros_like(g.mass), np.zeros_like(g.mom))
+        wmass, wj = self._fbar_nodes
+        wmass.fill(0.0)
+        wj.fill(0.0)
+        Fdom = self._domain_F(n)
+        points = scatter_points(p["x"][:n], rows, weight, vol, self._zero_stress(n))
+        p2g(self.tags, points, g.layout, wmass, wj, None, lp, Fdom, pfield)
+        if self.halo_enabled:
+            with self.timers.phase("halo"):
+                self.halo.sum([wmass, wj])
+        if g.folded:
+            g.fold_periodic([wmass, wj])
+        rows[:] = 0.0
+        add_gathered(self.tags, 0, n, p["x"][:n], rows, g.layout, wj, 1.0, wmass, 0.0, lp,
+                     Fdom, pfield)
+        return fbar_stress(self.dim, self.averaged, self.materials, mat, p["F"][:n], vol,
+                           vol0, rows, dt, mstate, p["sigma"][:n], pre)
 
     def sort_by_cell(self):
         """Reorder owned particles by grid cell so P2G/G2P walk memory in grid order."""
