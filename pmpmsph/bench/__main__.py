@@ -1,6 +1,7 @@
 """`python -m pmpmsph.bench throughput mpm [--n-grid N ...] [--dim 3] [--no-peers]
 [--install-peers]`; `... accuracy [--quick]` (accuracy.py), `... scaling`, `... io`,
-`... floats` (floats.py), `... plate` (plate_fsi.py), `... exchange CASE` (exchange.py).
+`... floats` (floats.py), `... plate` (plate_fsi.py), `... exchange CASE` (exchange.py),
+`... plastic` (plastic_cost.py).
 
 Prints particle-steps per second for our solver and for the peers of ../shared/peers run in
 the same invocation (machines are shared and noisy: ratios taken together hold, absolute
@@ -56,6 +57,13 @@ def main(argv: "list[str] | None" = None) -> None:
     io.add_argument("--steps", type=int, default=200)
     io.add_argument("--every", type=int, default=100, help="snapshot every N steps")
     io.add_argument("--out", default="bench_results")
+    pc = sub.add_parser("plastic", help="cost of the plastic materials per particle-step "
+                        "against neo-Hookean (plastic_cost.py)")
+    pc.add_argument("--n", type=int, default=128, help="particles per side of the block")
+    pc.add_argument("--steps", type=int, default=200)
+    pc.add_argument("--warmup", type=int, default=200)
+    pc.add_argument("--repeat", type=int, default=3)
+    pc.add_argument("--out", default="bench_results")
     ac = sub.add_parser("accuracy", help="error against cost for every method (accuracy.py)")
     ac.add_argument("--quick", action="store_true", help="coarse levels only (CI smoke)")
     ac.add_argument("--scenes", nargs="+", help="study keys (default: all), e.g. spring")
@@ -109,6 +117,10 @@ def main(argv: "list[str] | None" = None) -> None:
         return run(args, Distributor())
     if args.command == "exchange":
         from .exchange import run
+
+        return run(args)
+    if args.command == "plastic":
+        from .plastic_cost import run
 
         return run(args)
     if args.command == "floats":
