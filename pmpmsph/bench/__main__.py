@@ -8,9 +8,10 @@ the same invocation (machines are shared and noisy: ratios taken together hold, 
 figures drift), and writes the figures to bench_results/throughput_mpm.json.
 """
 import argparse
-import json
 import os
 import sys
+
+from . import write_json
 
 
 def main(argv: "list[str] | None" = None) -> None:
@@ -181,12 +182,8 @@ def main(argv: "list[str] | None" = None) -> None:
             for p in results["peers"]:
                 if p["n_grid"] == r["n_grid"] and p["rate"]:
                     print(f"  n_grid {r['n_grid']}: / {p['peer']}: {r['rate'] / p['rate']:.2f}")
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "throughput_mpm.json" if args.dim == 2
-                        else "throughput_mpm_3d.json")
-    with open(path, "w") as fh:
-        json.dump(results, fh, indent=1)
-    print(f"written {path}")
+    write_json(args.out, "throughput_mpm.json" if args.dim == 2 else "throughput_mpm_3d.json",
+               results)
     return 0
 
 
@@ -214,11 +211,7 @@ def throughput_sph(args, run_peer):
         print(f"{'pysph dam_break_2d':<28}{dx:>7}{'':>11}{shown}", flush=True)
         if rate:
             print(f"  ratio ours / PySPH at dx {dx}: {r['rate'] / rate:.2f}")
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "throughput_sph.json")
-    with open(path, "w") as fh:
-        json.dump(results, fh, indent=1)
-    print(f"written {path}")
+    write_json(args.out, "throughput_sph.json", results)
     return 0
 
 

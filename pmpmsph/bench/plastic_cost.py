@@ -8,10 +8,8 @@ phi = 30 deg), in MPM (GIMP, USL) with and without F-bar, and in updated-Lagrang
 (the floor a held layer). Best of `repeat` blocks of `steps` steps after a warm-up that
 compiles and lets the block start to flow plastically.
 """
-import json
-import os
-
 from ..scene_api import Scene
+from . import write_json
 from .throughput import time_simulation
 
 MATERIALS = {
@@ -70,9 +68,5 @@ def run(args):
                   flush=True)
             rows.append({"method": label, "material": material, "particles": n,
                          "rate": rate, "cost_ratio": ratio})
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "plastic_cost.json")
-    with open(path, "w") as fh:
-        json.dump(rows, fh, indent=1)
-    print(f"written {path}")
+    write_json(args.out, "plastic_cost.json", rows)
     return 0
