@@ -31,6 +31,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io.snapshot_read import list_snapshots, read_attrs, read_snapshot
+
 #: gauge positions (m) of cases/landslide.toml: 0.6 m and 1.2 m downstream of the slope's
 #: toe at x = 0.705, beyond the sand's runout and before the absorber (x >= 2.3)
 GAUGES = (1.3, 1.9)
@@ -62,8 +64,6 @@ def top_elevation(x, x_gauge, half_width=0.5 * HALF_WIDTH):
 def case_bodies(path):
     """(names in body order, indices of the moving bodies: not walls, not held) from the
     case text stored in a run file."""
-    from ..io.snapshot_read import read_attrs
-
     case = tomllib.loads(read_attrs(path)["case"])
     bodies = case.get("bodies", [])
     held = {c.get("body") for c in case.get("prescribed", []) if "box" not in c}
@@ -76,8 +76,6 @@ def case_bodies(path):
 def gauge_series(path, gauges=GAUGES, half_width=HALF_WIDTH):
     """(t, eta (n_snapshots, n_gauges), top (same: highest water particle - its t = 0
     value)) over the snapshots of a run file."""
-    from ..io.snapshot_read import list_snapshots, read_snapshot
-
     names, moving = case_bodies(path)
     water = names.index("water") if "water" in names else None
     ts, depth, top = [], [], []
@@ -115,35 +113,33 @@ def write_gauges(path, t, eta):
 
 def picture(path, png, t, eta, gauges=GAUGES, times=TIMES):
     """Particles coloured by body at `times` (the nearest snapshots) over the gauge curves."""
-    import matplotlib
+    import matplotlib  # noqa: PLC0415 - only the picture needs it
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from ..io.snapshot_read import list_snapshots, read_attrs, read_snapshot
+    import matplotlib.pyplot as plt  # noqa: PLC0415
 
     names, _ = case_bodies(path)
     case = tomllib.loads(read_attrs(path)["case"])
     walls = {i for i, b in enumerate(case.get("bodies", [])) if b.get("wall", False)}
     infos = list_snapshots(path)
     snap_t = np.array([i.time for i in infos])
-    fig = plt.figure(figsize=(11, 9.5))
-    grid = fig.add_gridspec(len(times) + 1, 1, height_ratios=[1] * len(times) + [1.5],
-                            hspace=0.35)
+    fig = plt.figure(figsize=(10, 2.9 * len(times) + 3.2))
+    grid = fig.add_gridspec(len(times) + 1, 1, height_ratios=[1] * len(times) + [1.1],
+                            hspace=0.25)
     for row, want in enumerate(times):
         k = int(np.argmin(np.abs(snap_t - want)))
         ts, _, d = read_snapshot(path, k, fields=["x", "body"])
         ax = fig.add_subplot(grid[row])
         colour = np.array([WALL_COLOUR if b in walls else COLOURS.get(names[b], "#2a9d5c")
                            for b in range(len(names))])
-        ax.scatter(d["x"][:, 0], d["x"][:, 1], s=0.6, c=colour[d["body"]], linewidths=0,
+        ax.scatter(d["x"][:, 0], d["x"][:, 1], s=1.0, c=colour[d["body"]], linewidths=0,
                    rasterized=True)
         for g in gauges:
             ax.axvline(g, color="crimson", lw=0.8, ls="--")
         ax.set_aspect("equal")
         ax.set_xlim(-0.05, 2.8)
         ax.set_ylim(-0.05, 0.75)
-        ax.text(0.01, 0.85, f"t = {ts:.2f} s", transform=ax.transAxes)
+        ax.text(0.45, 0.85, f"t = {ts:.2f} s", transform=ax.transAxes)
         if row == 0:
             ax.set_title("landslide into water: MPM sand (Drucker-Prager) on a held MPM slope, "
                          "SPH water; gauges dashed")
