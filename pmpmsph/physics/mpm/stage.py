@@ -353,6 +353,8 @@ class MPMStage:
         if n == 0 and not self._warming:  # no rows (the warm-up compiles on zero rows)
             if deformation and (kinematics or self.scheme.signal_after_deformation):
                 self.signal = 0.0
+            if deformation and self.averaged is not None:  # (its ghost-node sum is
+                self._fbar(dt, 0, lp, pfield, pre, mstate)  # collective: every rank joins)
             return bad
         with self.timers.phase("g2p"):
             if kinematics and self.affine:  # v, C, x (and for USL the gradient L)
@@ -399,13 +401,16 @@ class MPMStage:
         wmass.fill(0.0)
         wj.fill(0.0)
         Fdom = self._domain_F(n)
-        points = scatter_points(p["x"][:n], rows, weight, vol, self._zero_stress(n))
-        p2g(self.tags, points, g.layout, wmass, wj, None, lp, Fdom, pfield)
-        if self.halo_enabled:
+        if n or self._warming:
+            points = scatter_points(p["x"][:n], rows, weight, vol, self._zero_stress(n))
+            p2g(self.tags, points, g.layout, wmass, wj, None, lp, Fdom, pfield)
+        if self.halo_enabled:  # on every rank, rows or none (the neighbours wait for it)
             with self.timers.phase("halo"):
                 self.halo.sum([wmass, wj])
         if g.folded:
             g.fold_periodic([wmass, wj])
+        if n == 0 and not self._warming:
+            return -1
         rows[:] = 0.0
         add_gathered(self.tags, 0, n, p["x"][:n], rows, g.layout, wj, 1.0, wmass, 0.0, lp,
                      Fdom, pfield)
