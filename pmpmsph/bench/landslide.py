@@ -26,11 +26,12 @@ from __future__ import annotations
 import argparse
 import csv
 import os
-import tomllib
+import math
 from pathlib import Path
 
 import numpy as np
 
+from ..config.load import load_case_text
 from ..io.snapshot_read import list_snapshots, read_attrs, read_snapshot
 
 #: gauge positions (m) of cases/landslide.toml: 0.6 m and 1.2 m downstream of the slope's
@@ -62,14 +63,12 @@ def top_elevation(x, x_gauge, half_width=0.5 * HALF_WIDTH):
 
 
 def case_bodies(path):
-    """(names in body order, indices of the moving bodies: not walls, not held) from the
-    case text stored in a run file."""
-    case = tomllib.loads(read_attrs(path)["case"])
-    bodies = case.get("bodies", [])
-    held = {c.get("body") for c in case.get("prescribed", []) if "box" not in c}
-    names = [b.get("name", f"body{i}") for i, b in enumerate(bodies)]
-    moving = [i for i, b in enumerate(bodies)
-              if not b.get("wall", False) and names[i] not in held]
+    """(names in body order, indices of the moving bodies: not walls, not held whole) from
+    the case stored in a run file, read by the case loader."""
+    case = load_case_text(read_attrs(path)["case"])
+    held = {s.body for s in case.prescribed if all(math.isinf(v) for v in s.region.lo)}
+    names = [b.name for b in case.bodies]
+    moving = [i for i, b in enumerate(case.bodies) if not b.wall and b.name not in held]
     return names, moving
 
 
@@ -119,8 +118,8 @@ def picture(path, png, t, eta, gauges=GAUGES, times=TIMES):
     import matplotlib.pyplot as plt  # noqa: PLC0415
 
     names, _ = case_bodies(path)
-    case = tomllib.loads(read_attrs(path)["case"])
-    walls = {i for i, b in enumerate(case.get("bodies", [])) if b.get("wall", False)}
+    case = load_case_text(read_attrs(path)["case"])
+    walls = {i for i, b in enumerate(case.bodies) if b.wall}
     infos = list_snapshots(path)
     snap_t = np.array([i.time for i in infos])
     fig = plt.figure(figsize=(10, 2.9 * len(times) + 3.2))

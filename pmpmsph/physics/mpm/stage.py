@@ -394,7 +394,7 @@ class MPMStage:
         weight = self._fbar_weight[:n]
         vol, vol0, mat = p["vol"][:n], p["vol0"][:n], p["mat"][:n]
         np.multiply(vol0, self.averaged[mat], out=weight)
-        rows[:, 0] = vol / vol0
+        np.divide(vol, vol0, out=rows[:, 0])  # J (no temporary)
         if len(self._fbar_nodes) == 0 or self._fbar_nodes[0].shape != g.mass.shape:
             self._fbar_nodes = (np.zeros_like(g.mass), np.zeros_like(g.mom))
         wmass, wj = self._fbar_nodes
