@@ -1,8 +1,10 @@
-"""``python -m pmpmsph plot RUN [-o PNG]``: the diagnostics of a run at a glance.
+"""``python -m pmpmsph plot RUN [--field NAME [--step K|all] [--movie]] [-o PATH]``.
 
-Reads ``RUN/diagnostics.csv`` and writes ``RUN/diagnostics.png`` (matplotlib, Agg backend,
-no display needed): kinetic, strain, potential and total energy; the momentum components;
-and the time step, all against time.
+Without ``--field``: reads ``RUN/diagnostics.csv`` and writes ``RUN/diagnostics.png``
+(matplotlib, Agg backend, no display needed): kinetic, strain, potential and total energy;
+the momentum components; and the time step, all against time; and ``RUN/probes.png`` when
+the run has ``probes.csv``. With ``--field``: the particles coloured by a field
+(pictures.py), one PNG per snapshot asked for, or an animation with ``--movie``.
 """
 import argparse
 import os
@@ -11,6 +13,7 @@ import sys
 import numpy as np
 
 from .io.diagnostics import read_diagnostics
+from .pictures import movie, plot_field
 
 
 def _csv_of(run):
@@ -57,17 +60,61 @@ def plot_diagnostics(run, out=None):
     return out
 
 
+def _steps(value):
+    """--step: 'all', or a step number (repeatable)."""
+    if value == "all":
+        return value
+    try:
+        return int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected a step number or 'all', got {value!r}") from None
+
+
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="python -m pmpmsph plot",
-                                 description="Plot RUN/diagnostics.csv to RUN/diagnostics.png.")
+    ap = argparse.ArgumentParser(
+        prog="python -m pmpmsph plot",
+        description="Without --field: RUN/diagnostics.csv to RUN/diagnostics.png (and "
+        "RUN/probes.csv to RUN/probes.png when the case has probes). With --field: the "
+        "particles coloured by that field, e.g. --field pressure, --field v.norm, "
+        "--field sigma.xy, --field v.y (pmpmsph/pictures.py).")
     ap.add_argument("run", help="run folder (or its diagnostics.csv)")
-    ap.add_argument("-o", "--output", default=None, help="image path (default "
-                    "RUN/diagnostics.png)")
+    ap.add_argument("-o", "--output", default=None, help="image path (default: in RUN)")
+    ap.add_argument("--field", default=None, help="particle field to colour by (name, "
+                    "name.x, name.xy, name.norm; pressure and mises from the stress)")
+    ap.add_argument("--step", type=_steps, action="append", default=None, metavar="K|all",
+                    help="snapshot of step K (repeatable) or all (default: the last)")
+    ap.add_argument("--movie", action="store_true", help="an animation over every snapshot "
+                    "(GIF; MP4 when -o ends in .mp4 and ffmpeg exists)")
+    ap.add_argument("--view", default="xy", choices=("xy", "xz", "yz", "yx", "zx", "zy"),
+                    help="3D: the plane to project on (default xy)")
+    ap.add_argument("--slice", type=float, default=None, metavar="COORD",
+                    help="3D: only the particles within half a particle of this coordinate "
+                    "along the view's normal")
     args = ap.parse_args(argv)
     try:
-        out = plot_diagnostics(args.run, args.output)
-    except (OSError, ValueError) as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        if args.field is None:
+            paths = [plot_diagnostics(args.run, args.output)]
+            probes = os.path.join(os.path.dirname(_csv_of(args.run)), "probes.csv")
+            if os.path.exists(probes):
+                from .io.probes_plot import plot_probes  # noqa: PLC0415 - only with probes
+
+                paths.append(plot_probes(os.path.dirname(probes)))
+        elif args.movie:
+            paths = [movie(_run_of(args.run), args.field, args.output, args.view, args.slice)]
+        else:
+            steps = args.step
+            if steps is not None and "all" in steps:
+                steps = "all"
+            paths = plot_field(_run_of(args.run), args.field, steps, args.output, args.view,
+                               args.slice)
+    except (OSError, ValueError, KeyError) as exc:
+        msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
+        print(f"error: {msg}", file=sys.stderr)
         return 2
-    print(out)
+    print("\n".join(paths))
     return 0
+
+
+def _run_of(path):
+    return os.path.dirname(path) if path.endswith(".csv") else path

@@ -10,6 +10,8 @@ import os
 import numpy as np
 import pytest
 
+import pmpmsph
+
 from pmpmsph.io import (DiagnosticsCSV, SnapshotWriter, list_snapshots, read_attrs,
                         read_diagnostics, read_snapshot)
 from pmpmsph.io.h5files import rank_file
@@ -117,6 +119,25 @@ def check_run(dist, path, times, layout):
                 np.testing.assert_array_equal(f[f"xdmf/polyvertex/{info.n_total}"][()],
                                               np.arange(info.n_total))
     check_xdmf(path, [i for i in infos if i.n_total > 0])
+    check_reader(dist, path, times)
+
+
+def check_reader(dist, path, times):
+    """`pmpmsph.read` returns every snapshot sorted by gid, whatever the rows' rank order."""
+    run = pmpmsph.read(path)
+    assert len(run) == len(times)
+    np.testing.assert_array_equal(run.times, times)
+    np.testing.assert_array_equal(run.steps, [0, 10, 20])
+    for snap, data in enumerate(run):
+        ref = expected(dist.size, snap)
+        order = np.argsort(ref["gid"])
+        assert (data.time, data.step, data.index) == (times[snap], 10 * snap, snap)
+        assert np.all(np.diff(data["gid"]) > 0)
+        for k in ref:
+            np.testing.assert_array_equal(data[k], ref[k][order], err_msg=k)
+    # the same particles in the first two snapshots? no: counts differ, so series refuses
+    with pytest.raises(ValueError, match="changes shape"):
+        run.series("x")
 
 
 def check_xdmf(path, infos):
