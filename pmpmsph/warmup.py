@@ -1,11 +1,24 @@
 """The JIT warm-up of a `Simulation`: every kernel its scene uses compiled (or loaded from
 the on-disk cache) before step 1, and reported apart from the run (Dedalus style)."""
+import logging
+import threading
 import time
 
+import numba
 import numpy as np
 
 from .kernels.diagnostics import max_signal_speed, particle_sums
 from .kernels.partition import cell_keys, slab_leavers
+
+log = logging.getLogger("pmpmsph")
+#: seconds of warm-up after which the wait is announced (loading a warm cache takes less)
+ANNOUNCE_AFTER = 3.0
+
+
+def _announce():
+    log.info("compiling the kernels this scene uses: the first run of a version (or of a new "
+             "kind of scene) takes up to a few minutes; they are cached in %s",
+             numba.config.CACHE_DIR)
 
 
 def compile_kernels(sim):
@@ -18,10 +31,19 @@ def compile_kernels(sim):
     """
     t0 = time.perf_counter()
     before = dict(sim.timers.total)
-    for turn in (0, 1):
-        if (sim.dist.rank == 0) == (turn == 0):
-            _dry_step(sim)
-        sim.dist.barrier()
+    # A timer rather than a guess at the cache's state: only a wait that happens is announced.
+    notice = threading.Timer(ANNOUNCE_AFTER, _announce) if sim.dist.rank == 0 else None
+    if notice is not None:
+        notice.daemon = True
+        notice.start()
+    try:
+        for turn in (0, 1):
+            if (sim.dist.rank == 0) == (turn == 0):
+                _dry_step(sim)
+            sim.dist.barrier()
+    finally:
+        if notice is not None:
+            notice.cancel()
     sim.timers.total.clear()
     sim.timers.total.update(before)  # the dry step's phases are not run time
     sim.timers.add("jit_warmup", time.perf_counter() - t0)

@@ -3,6 +3,7 @@
 Every getter validates and raises `ConfigError(key, reason)`; `finish()` rejects keys that no
 getter asked for, so a misspelt key is an error rather than silently ignored.
 """
+import difflib
 import numbers
 
 from ..errors import ConfigError, is_finite
@@ -22,18 +23,24 @@ class Table:
         self.data = data
         self.path = path
         self.used = set()
+        self.asked = set()  # every name a getter or `has` looked for: the section's keys
 
     def key(self, name):
         return f"{self.path}.{name}" if self.path else name
 
     def has(self, name):
+        self.asked.add(name)
         return name in self.data
 
     def raw(self, name, default=_MISSING):
         self.used.add(name)
+        self.asked.add(name)
         if name not in self.data:
             if default is _MISSING:
-                raise ConfigError(self.key(name), "required value is missing")
+                unasked = [k for k in self.data if k not in self.asked]
+                close = difflib.get_close_matches(name, unasked, n=1)
+                hint = f" (is {close[0]!r} a misspelling of it?)" if close else ""
+                raise ConfigError(self.key(name), "required value is missing" + hint)
             return default
         return self.data[name]
 
@@ -54,6 +61,7 @@ class Table:
                max_open=None, integer=False):
         if name not in self.data and default is not _MISSING:
             self.used.add(name)
+            self.asked.add(name)
             return default
         v = self.raw(name)
         k = self.key(name)
@@ -80,6 +88,7 @@ class Table:
         """A list of `length` numbers (a single number too if `scalar_ok`)."""
         if name not in self.data and default is not _MISSING:
             self.used.add(name)
+            self.asked.add(name)
             return default
         v = self.raw(name)
         k = self.key(name)
@@ -103,13 +112,14 @@ class Table:
     def string(self, name, default=_MISSING, *, choices=None):
         if name not in self.data and default is not _MISSING:
             self.used.add(name)
+            self.asked.add(name)
             return default
         v = self.raw(name)
         k = self.key(name)
         if not isinstance(v, str):
             raise ConfigError(k, f"expected a string, got {_short(v)}")
         if choices is not None and v not in choices:
-            raise ConfigError(k, f"unknown value {_short(v)}; "
+            raise ConfigError(k, f"unknown value {_short(v)}{did_you_mean(v, choices)}; "
                                  f"choose one of {', '.join(sorted(choices))}")
         return v
 
@@ -122,4 +132,12 @@ class Table:
     def finish(self):
         extra = [k for k in self.data if k not in self.used]
         if extra:
-            raise ConfigError(self.key(extra[0]), "unknown key")
+            known = self.asked
+            raise ConfigError(self.key(extra[0]), "unknown key" + did_you_mean(extra[0], known))
+
+
+def did_you_mean(word, candidates):
+    """' (did you mean 'x'?)' for the closest of `candidates` (difflib's ratio >= 0.6, the
+    threshold its `get_close_matches` uses), else ''."""
+    close = difflib.get_close_matches(str(word), sorted(candidates), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
