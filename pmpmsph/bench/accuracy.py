@@ -11,7 +11,7 @@ normal `Simulation`), wall time is the slowest rank's, rank 0 writes: DIR/<scene
 DIR/<scene>.png (error against wall time and against particle-steps, one curve per method),
 DIR/orders.csv and DIR/summary.md (observed orders, fastest method to 1 % and 0.1 %,
 methods that do not converge and why). `--readme` also copies the figures to docs/accuracy/
-and rewrites the README section between the accuracy markers with the summary.
+and rewrites the section between the accuracy markers of docs/speed_vs_error.md with the summary.
 """
 import csv
 import json

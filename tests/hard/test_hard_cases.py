@@ -1,5 +1,5 @@
 """Hard cases (issue 8, part 1 — a first set): each runs stably with its numbers asserted, or
-stops with the clear runtime error. The README's hard-case table quotes these figures.
+stops with the clear runtime error. docs/hard_cases.md quotes these figures.
 
 * 100,000 steps of an undamped elastic bar (scene 1's spring with damping off, GIMP, USF):
   total energy never grows; it decays by 0.7 %, 2.2 %, 7.0 % of max(K + U) after 10k, 50k,
@@ -115,7 +115,7 @@ def test_bars_colliding_at_half_the_wave_speed():
     particles' material domains do overlap: the gap between the two end particles falls
     to 0.26 of their combined half-lengths at the deepest point).
 
-    Measured (README hard-case table): largest compression J = 0.419, rebound speed 0.824 of
+    Measured (docs/hard_cases.md): largest compression J = 0.419, rebound speed 0.824 of
     the impact speed, total energy 0.867 of the initial after separation. Faster impacts
     also run without a runtime error but the end particles pass each other: at 0.7 c the
     gap reaches -0.14 half-lengths, at 0.9 c -0.81 (2 particles per cell: -0.004 already at

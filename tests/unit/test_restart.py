@@ -3,7 +3,7 @@ rank count it reaches the state of an uninterrupted run (DESIGN.md §6, §7).
 
 Runs from the serial session and starts its own `scripts/mpirun -n 2` (a test under mpirun
 cannot start another mpirun). The SIGTERM goes to the rank processes themselves: Open MPI's
-mpirun answers a SIGTERM of its own by killing the ranks a second later (see README).
+mpirun answers a SIGTERM of its own by killing the ranks a second later (see docs/output.md).
 """
 import os
 import signal
