@@ -193,7 +193,7 @@ def cmd_run(args, dist):
         log.info("phases: %s", ", ".join(f"{k} {v:.2f} s" for k, v in sorted(phases.items())))
     if out and dist.is_root:
         files = [f for f in ("particles.h5", "particles.xdmf", "diagnostics.csv",
-                             "checkpoint.h5") if os.path.exists(os.path.join(out, f))]
+                             "probes.csv", "checkpoint.h5") if os.path.exists(os.path.join(out, f))]
         size = sum(os.path.getsize(os.path.join(out, f)) for f in files)
         log.info("output: %s in %s (%.1f MiB); plot with: python -m pmpmsph plot %s",
                  ", ".join(files), out, size / 2**20, out)

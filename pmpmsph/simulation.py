@@ -20,6 +20,7 @@ from .errors import RunError
 from .io.checkpoint import STOP
 from .io.folders import check_output_folder
 from .io.output import Output
+from .io.probes import Probes
 from .io.restart import Restart
 from .kernels.deformation import jacobian
 from .kernels.diagnostics import particle_sums
@@ -89,6 +90,9 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
             self.sph.set_constraint(self.prescribed)  # held within the SPH stages' steps
         self.damping = (DampingZones(case.damping, case, self.particles)
                         if case.damping else None)
+        # [[probes]] (io/probes.py): RUN/probes.csv; None when the case has none
+        self.probes = (Probes(case, self.particles, self.dist, self.prescribed, self.timers)
+                       if case.probes else None)
         self._sums = np.zeros(7)
         # the energy of one material type is called directly, not through the type switch;
         # from the case's bodies (not this rank's particles, which migrate), as in MPMStage
@@ -328,6 +332,8 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
             self._after_snapshot() if self.writer else None
         if self.diag:
             self.diag.append(self.diagnostics())
+        if self.probes is not None:
+            self.probes.start(self.time, self.step_count)
         t_start = time.perf_counter()
         steps0 = self.step_count
         t0_sim = self.time
@@ -340,6 +346,8 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
                 self.step()
                 if self.diag and self.step_count % diag_every == 0:
                     self.diag.append(self.diagnostics())
+                if self.probes is not None and self.probes.due(self.time, self.step_count):
+                    self.probes.write(self.time, self.step_count)
                 if self.writer and self._scheduled_snapshot():
                     self.write_snapshot()
                     self._after_snapshot()
@@ -371,6 +379,8 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
             self.write_checkpoint()
         if self.diag and self.step_count % diag_every != 0:
             self.diag.append(self.diagnostics())
+        if self.probes is not None and self.probes.written_step != self.step_count:
+            self.probes.write(self.time, self.step_count)
         wall = time.perf_counter() - t_start
         self.timers.add("run", wall)
         n_steps = self.step_count - steps0
@@ -385,6 +395,8 @@ class Simulation(Output, Restart, Rebalancing, TimeStepControl):
         if self.diag is not None:
             self.diag.close()
             self.diag = None
+        if self.probes is not None:
+            self.probes.close()
 
     # -- checkpoints and restart (DESIGN.md §6; file layout in io/checkpoint.py) ------------------
     #: the --set overrides the case was loaded with and the case file's folder (relative mesh

@@ -239,6 +239,8 @@ class OutputSpec:
     precision: str = "single"           # float fields of snapshots: "single" or "double"
     folder: str = "output"
     checkpoint_every: int = 0           # steps between checkpoints (0: only on signal/failure)
+    probes_every: Optional[float] = None  # seconds between probes.csv rows (None: the
+    # diagnostics schedule; config/probes.py)
 
     def diagnostics_interval(self, n_particles):
         """Steps between diagnostics rows for a run of n_particles (global)."""
@@ -276,6 +278,7 @@ class Case:
     periodic: tuple = ()            # axes (0, 1, 2) along which [domain] is periodic (SPH)
     regions: tuple = ()             # MethodRegion, applied in order over the body methods
     coupling: CouplingSpec = field(default_factory=CouplingSpec)
+    probes: tuple = ()              # ProbeSpec (config/probes.py): RUN/probes.csv
     text: str = ""
 
     def _methods(self) -> set[str]:

@@ -17,6 +17,7 @@ from ..physics.mpm.transfer_schemes import TRANSFER_SCHEMES
 from .case import (CONTACTS, SHAPES, TRANSFERS, VELOCITY_UPDATES, Case, CouplingSpec, MPMSpec,
                    PLASTIC_FIELDS, OutputSpec, ParallelSpec, TimeSpec)
 from .conditions import _boundary, _damping, _load, _prescribed
+from .probes import probes_from, probes_interval
 from .sections import (CASE_DIR, _body, _check_mpm_hydrostatic, _check_periodic, _domain,
                        _grid, _method_region, _sph)
 from .table import Table
@@ -287,8 +288,13 @@ def case_from_dict(data, name="case", text=""):
                         precision=ot.string("precision", "single",
                                             choices=("single", "double")),
                         folder=_folder(ot, "folder", "output"),
-                        checkpoint_every=ot.number("checkpoint_every", 0, integer=True, min=0))
+                        checkpoint_every=ot.number("checkpoint_every", 0, integer=True, min=0),
+                        probes_every=probes_interval(ot))
     ot.finish()
+    probes = probes_from(root.subs("probes"), dim, bodies, prescribed, damping, gravity,
+                         domain, "mpm" in methods)
+    if output.probes_every is not None and not probes:
+        raise ConfigError(ot.key("probes_every"), "the scene has no [[probes]]")
     pt = root.sub("parallel", {})
     axis = pt.string("axis", "auto", choices=("auto",) + tuple("xyz"[:dim]))
     parallel = ParallelSpec(axis=None if axis == "auto" else "xyz".index(axis),
@@ -302,7 +308,7 @@ def case_from_dict(data, name="case", text=""):
                 gravity=gravity,
                 time=TimeSpec(end, dt, cfl, max_steps), output=output, parallel=parallel, sph=sph,
                 domain=domain, periodic=periodic, regions=regions, coupling=coupling,
-                text=text)
+                probes=probes, text=text)
     if mpm.deformation == "J" and not case.tracks_J_only:
         raise ConfigError("mpm.deformation", "J alone describes fluids only: it needs a pure-MPM "
                           "scene (no SPH), a shape other than cpdi and only fluid materials")

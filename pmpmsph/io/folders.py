@@ -9,7 +9,7 @@ import os
 from ..errors import ConfigError
 
 #: the files whose presence means "a run is already here"
-RUN_FILES = ("particles.h5", "diagnostics.csv")
+RUN_FILES = ("particles.h5", "diagnostics.csv", "probes.csv")
 
 
 def check_output_folder(path, overwrite, key="--out"):

@@ -29,6 +29,16 @@ class Output:
                                             "code_version": code_version()},
                                      overwrite=True, **self._snapshot_format())
         self.diag = DiagnosticsCSV(self.dist, csv, self.diagnostics_columns(), overwrite=True)
+        self._open_probes(append=False)
+
+    def _open_probes(self, append):
+        """RUN/probes.csv of the `[[probes]]` (io/probes.py), if the case has any: a new
+        file, or with `append` the restarted run's continued one."""
+        if getattr(self, "probes", None) is None:
+            return
+        path = os.path.join(self.out_dir, "probes.csv")
+        self.probes.open(DiagnosticsCSV(self.dist, path, self.probes.columns,
+                                        overwrite=not append, append=append))
 
     def diagnostics_columns(self):
         """DIAG_COLUMNS, then the reactions of the `[[prescribed]]` constraints if any

@@ -188,4 +188,10 @@ class Restart:
         self._agree("--out", lambda: truncate_rows(csv, "step", self.step_count),
                     root_only=True)
         self.diag = DiagnosticsCSV(self.dist, csv, self.diagnostics_columns(), append=True)
+        if getattr(self, "probes", None) is not None:  # rows up to this step stay
+            probes = os.path.join(out_dir, "probes.csv")
+            self._agree("--out", lambda: truncate_rows(probes, "step", self.step_count + 1),
+                        root_only=True)
+            self._open_probes(append=True)
+            self.probes.resumed_at(self.step_count)
         return True

@@ -82,6 +82,10 @@ class PrescribedVelocity:
         self.impulse = np.zeros((len(specs), 3))  # this rank's, since the last reaction row
         self.elapsed = 0.0
         self._held = np.zeros((len(specs), 3))  # the force `hold` cancelled in this step
+        # a second running sum of the impulses for the force probes (io/probe_sampling.py),
+        # which read at their own times; None until a probe opens it (`open_tap`)
+        self.tap = None
+        self.tap_elapsed = 0.0
 
     def columns(self, dim):
         """The diagnostics columns of the reactions: reaction{j}_x, ... per constraint j."""
@@ -120,13 +124,16 @@ class PrescribedVelocity:
             for a, val in enumerate(s.velocity):
                 if val is not None:
                     if x_before is not None:
-                        self.impulse[j, a] += (np.dot(mass, val - v[sel, a])
-                                               + dt * self._held[j, a])
+                        dp = np.dot(mass, val - v[sel, a]) + dt * self._held[j, a]
+                        self.impulse[j, a] += dp
+                        if self.tap is not None:
+                            self.tap[j, a] += dp
                     v[sel, a] = val
                     if x_before is not None:
                         p.move(sel[known], a, xs[at[known], a] + dt * val)
         if x_before is not None:
             self.elapsed += dt
+            self.tap_elapsed += dt
             self._held[:] = 0.0
 
     def hold(self, acc):
@@ -153,6 +160,20 @@ class PrescribedVelocity:
         out = self.impulse.ravel().copy()
         self.impulse[:] = 0.0
         return out
+
+    def open_tap(self):
+        """Start the probes' running sum of the impulses (`take_tap`)."""
+        if self.tap is None:
+            self.tap = np.zeros((len(self.specs), 3))
+            self.tap_elapsed = 0.0
+
+    def take_tap(self):
+        """(this rank's impulses since the last call, constraints x 3; the time they span),
+        then reset: the force probes' share, apart from the diagnostics' `local_impulse`."""
+        out, elapsed = self.tap.copy(), self.tap_elapsed
+        self.tap[:] = 0.0
+        self.tap_elapsed = 0.0
+        return out, elapsed
 
     def reaction_row(self, impulse, dim):
         """The diagnostics columns (`columns`) from the ranks' summed `impulse`: the mean
