@@ -27,6 +27,8 @@ _AXES = {"x": 0, "y": 1, "z": 2, "0": 0, "1": 1, "2": 2}
 _ALIASES = {"speed": "v.norm", "velocity": "v.norm"}
 #: fields computed from the stress when a snapshot does not hold them
 _FROM_STRESS = ("pressure", "mises")
+#: resolution of the pictures (the figure is 8 inches wide)
+DPI = 120
 
 
 def field_values(snap, spec):
@@ -107,7 +109,10 @@ def _marker_area(ax, fig, frame):
     box = ax.get_window_extent()
     x0, x1 = ax.get_xlim()
     points_per_unit = box.width * 72.0 / fig.dpi / max(x1 - x0, 1e-300)
-    return (frame.size * points_per_unit) ** 2
+    # 15 % larger than the particle, at least a pixel: no seams of background between
+    # neighbours that antialiasing would draw at a few pixels a particle
+    side = np.maximum(1.15 * frame.size * points_per_unit, 72.0 / fig.dpi)
+    return side ** 2
 
 
 def _limits(frames):
@@ -199,7 +204,7 @@ def plot_field(run_path, spec, steps=None, out=None, view="xy", slice_at=None):
         show(frame)
         path = out if (out and len(frames) == 1) else os.path.join(
             out or run.folder, f"{safe}_{frame.step:08d}.png")
-        fig.savefig(path, dpi=100)
+        fig.savefig(path, dpi=DPI)
         paths.append(path)
     plt.close(fig)
     return paths
@@ -223,6 +228,6 @@ def movie(run_path, spec, out=None, view="xy", slice_at=None, fps=10):
         writer = animation.PillowWriter(fps=fps)
     anim = animation.FuncAnimation(fig, lambda k: show(frames[k]), frames=len(frames),
                                    blit=False)
-    anim.save(out, writer=writer, dpi=80)
+    anim.save(out, writer=writer, dpi=DPI * 2 // 3)
     plt.close(fig)
     return out
