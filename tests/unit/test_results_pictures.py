@@ -11,7 +11,7 @@ from pmpmsph import Scene
 from pmpmsph.cli import main
 from pmpmsph.io import read_snapshot
 from pmpmsph.io.results import Snapshot
-from pmpmsph.pictures import Frame, field_values
+from pmpmsph.pictures import DPI, Frame, field_values
 
 
 @pytest.fixture(scope="module")
@@ -91,7 +91,7 @@ def test_plot_field_pictures_and_movie(run_dir):
     assert main(["plot", run_dir, "--field", "v.norm"]) == 0
     png = os.path.join(run_dir, "v_norm_00000020.png")
     with Image.open(png) as im:
-        assert im.size[0] == 800 and im.size[1] > 200
+        assert im.size[0] == 8 * DPI and im.size[1] > 200
     assert main(["plot", run_dir, "--field", "pressure", "--step", "0", "--step", "10"]) == 0
     for step in (0, 10):
         assert os.path.exists(os.path.join(run_dir, f"pressure_{step:08d}.png"))
