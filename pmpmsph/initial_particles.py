@@ -3,6 +3,7 @@ and load fields set, the bad set-ups (overlaps, too many points, empty bodies) r
 import numpy as np
 
 from .codes import METHOD_CODES
+from .config.initial_fields import field_values, voigt_tensors
 from .errors import ConfigError
 from .io.derived_fields import offered
 from .kernels.mpm.shape_functions.registry import shape_named
@@ -69,19 +70,6 @@ def material_arrays(case):
     mtypes = np.array([m.type_code for m in mats], dtype=np.int64)
     mparams = np.array([m.params(case.dim) for m in mats], dtype=np.float64)
     return mtypes, mparams
-
-
-def _voigt_to_tensor(stress, dim):
-    s = np.zeros((3, 3))
-    if dim == 1:
-        s[0, 0] = stress[0]
-    elif dim == 2:
-        s[0, 0], s[1, 1], s[0, 1] = stress
-        s[1, 0] = s[0, 1]
-    else:
-        s[0, 0], s[1, 1], s[2, 2], s[1, 2], s[0, 2], s[0, 1] = stress
-        s[2, 1], s[2, 0], s[1, 0] = s[1, 2], s[0, 2], s[0, 1]
-    return s
 
 
 def build_particles(case, keep=None):
@@ -160,7 +148,9 @@ def build_particles(case, keep=None):
         sel = np.ones(n, bool) if keep is None else keep(x)
         vals = {
             "gid": gid, "body": np.full(n, bi, np.int32), "mat": np.full(n, mi, np.int32),
-            "x": x, "v": np.tile(np.array(body.velocity, float), (n, 1)),
+            # evaluated over the whole body on every rank before `sel`: the same values
+            # and the same verdict on non-finite ones whatever the rank count
+            "x": x, "v": field_values(body.velocity, x, f"{key}.velocity"),
             "mass": mat.rho0 * vol, "vol0": vol, "vol": vol,
             "method": region_methods(case, x, np.full(
                 n, METHOD_CODES["wall" if body.wall else body.method], np.int8)),
@@ -170,8 +160,7 @@ def build_particles(case, keep=None):
         if "X0" in ps:
             vals["X0"] = x
         if body.stress:
-            s = _voigt_to_tensor(body.stress, dim)
-            vals["sigma"] = np.tile(s, (n, 1, 1))
+            vals["sigma"] = voigt_tensors(field_values(body.stress, x, f"{key}.stress"), dim)
             vals["prestress"] = vals["sigma"]
         if "lp" in ps:
             vals["lp"] = np.tile(0.5 * spacing / np.array(case.grid.cell_size), (n, 1))

@@ -5,6 +5,10 @@
     scene.material("rubber", model="neo_hookean", E=1e3, nu=0.3, rho=1000)
     scene.body(name="disc", material="rubber", shape="disc", centre=[.5, .5], radius=.2, ppc=2)
     sim = scene.simulation()          # validated exactly like a TOML case
+
+A body's `velocity` and `stress` take, besides numbers, expression strings of the position
+(`velocity=["-3*(y - 0.5)", "3*(x - 0.5)"]`) or a function f(x) of the (n, dim) seeded
+positions returning (n, dim) (stress: (n, Voigt length)): docs/initial_fields.md.
 """
 from __future__ import annotations
 

@@ -15,6 +15,7 @@ from ..scene.mesh import MeshGeometry, mesh_geometry
 from .case import (METHODS, SPH_FORMULATIONS, SPH_INTEGRATORS, SPH_KERNELS, BodySpec,
                    GridSpec, MethodRegion, SPHSpec)
 from .conditions import _voigt_len
+from .initial_fields import InitialField, read_field
 from .table import is_finite
 
 #: folder that relative paths in a case (mesh files) are taken from: the case file's folder
@@ -102,8 +103,9 @@ def _body(t, dim, materials, grid):
         if not isinstance(geom, Box):
             raise ConfigError(t.key("count"), "count is for box bodies; use ppc or spacing")
         count = t.vector("count", dim, integer=True, positive=True, scalar_ok=True)
-    velocity = t.vector("velocity", dim, (0.0,) * dim)
-    stress = t.vector("stress", _voigt_len(dim), ())
+    # numbers, or expressions of the position (config/initial_fields.py)
+    velocity = read_field(t, "velocity", dim, dim, (0.0,) * dim)
+    stress = read_field(t, "stress", _voigt_len(dim), dim, ())
     wall = t.boolean("wall", False)
     if wall and method != "sph":
         raise ConfigError(t.key("wall"), "wall particles are SPH dummy particles: set "
@@ -113,6 +115,9 @@ def _body(t, dim, materials, grid):
         raise ConfigError(t.key("moving"), "moving is for wall bodies (wall = true), whose "
                           "particles otherwise stay in place; other bodies move by their "
                           "own dynamics")
+    if moving and isinstance(velocity, InitialField):  # (stage.py moves x by v each step)
+        raise ConfigError(t.key("velocity"), "a moving wall moves rigidly: give its velocity "
+                          "as numbers, not expressions")
     if method == "sph" and ppc is not None and grid is None:
         raise ConfigError(t.key("ppc"), "SPH bodies without a [grid] are seeded by spacing "
                           "or count, not ppc")

@@ -58,7 +58,8 @@ SUBSET_2 = ["syntax_unclosed_table", "type_string_for_number", "missing_material
             "out_is_file", "out_is_file_without_overwrite", "out_cannot_be_made",
             "nesting_too_deep", "output_fields_empty", "dt_absurd_step_count",
             "max_steps_negative", "max_steps_not_integer", "periodic_axis_closed_by_wall",
-            "periodic_period_not_whole_spacings", "mpm_periodic_slabs_too_thin"]
+            "periodic_period_not_whole_spacings", "mpm_periodic_slabs_too_thin",
+            "expression_unknown_name", "expression_not_finite"]
 
 
 def test_corpus_is_complete():
