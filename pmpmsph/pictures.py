@@ -131,7 +131,7 @@ def _colour_range(frames):
     return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)
 
 
-def _figure(frames, title):
+def _figure(frames, title, limits=None):
     import matplotlib  # noqa: PLC0415 - optional, for pictures only
 
     matplotlib.use("Agg")
@@ -147,7 +147,7 @@ def _figure(frames, title):
     ax.set_aspect("equal")
     ax.set_xlabel(frames[0].view[0])
     ax.set_ylabel(frames[0].view[1])
-    vmin, vmax = _colour_range(frames)
+    vmin, vmax = limits if limits is not None else _colour_range(frames)
     art = ax.scatter(frames[0].xy[:, 0], frames[0].xy[:, 1], c=frames[0].values, s=1.0,
                      marker="s", linewidths=0, cmap="viridis", vmin=vmin, vmax=vmax)
     fig.colorbar(art, ax=ax, label=frames[0].label, shrink=0.9)
@@ -193,11 +193,12 @@ def _title(run):
     return run.attrs.get("case_name") or os.path.basename(os.path.normpath(run.folder))
 
 
-def plot_field(run_path, spec, steps=None, out=None, view="xy", slice_at=None):
-    """One PNG per chosen snapshot (same colour range for all); returns their paths."""
+def plot_field(run_path, spec, steps=None, out=None, view="xy", slice_at=None, limits=None):
+    """One PNG per chosen snapshot (same colour range for all: `limits` (vmin, vmax), by
+    default the range over the chosen snapshots); returns their paths."""
     run = read(run_path)
     frames = _frames(run, spec, steps, view, slice_at)
-    fig, show, plt = _figure(frames, _title(run))
+    fig, show, plt = _figure(frames, _title(run), limits)
     safe = spec.replace("|", "").replace(".", "_")
     paths = []
     for frame in frames:
@@ -210,14 +211,14 @@ def plot_field(run_path, spec, steps=None, out=None, view="xy", slice_at=None):
     return paths
 
 
-def movie(run_path, spec, out=None, view="xy", slice_at=None, fps=10):
+def movie(run_path, spec, out=None, view="xy", slice_at=None, fps=10, limits=None):
     """An animation over every snapshot: MP4 when ffmpeg exists and `out` ends in .mp4,
     else a GIF (Pillow). Returns its path."""
     import matplotlib.animation as animation  # noqa: PLC0415 - optional, for movies only
 
     run = read(run_path)
     frames = _frames(run, spec, "all", view, slice_at)
-    fig, show, plt = _figure(frames, _title(run))
+    fig, show, plt = _figure(frames, _title(run), limits)
     safe = spec.replace("|", "").replace(".", "_")
     out = out or os.path.join(run.folder, f"{safe}.gif")
     if out.endswith(".mp4") and animation.FFMpegWriter.isAvailable():

@@ -91,6 +91,8 @@ def main(argv=None):
     ap.add_argument("--slice", type=float, default=None, metavar="COORD",
                     help="3D: only the particles within half a particle of this coordinate "
                     "along the view's normal")
+    ap.add_argument("--range", type=float, nargs=2, default=None, metavar=("MIN", "MAX"),
+                    help="colour range (default: the range over the snapshots drawn)")
     args = ap.parse_args(argv)
     try:
         if args.field is None:
@@ -101,13 +103,14 @@ def main(argv=None):
 
                 paths.append(plot_probes(os.path.dirname(probes)))
         elif args.movie:
-            paths = [movie(_run_of(args.run), args.field, args.output, args.view, args.slice)]
+            paths = [movie(_run_of(args.run), args.field, args.output, args.view, args.slice,
+                           limits=args.range)]
         else:
             steps = args.step
             if steps is not None and "all" in steps:
                 steps = "all"
             paths = plot_field(_run_of(args.run), args.field, steps, args.output, args.view,
-                               args.slice)
+                               args.slice, limits=args.range)
     except (OSError, ValueError, KeyError) as exc:
         msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
         print(f"error: {msg}", file=sys.stderr)

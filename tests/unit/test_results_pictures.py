@@ -98,6 +98,9 @@ def test_plot_field_pictures_and_movie(run_dir):
     assert main(["plot", run_dir, "--field", "sigma.xy", "--movie"]) == 0
     with Image.open(os.path.join(run_dir, "sigma_xy.gif")) as im:
         assert im.n_frames == 3
+    assert main(["plot", run_dir, "--field", "rho", "--range", "900", "1100", "-o",
+                 os.path.join(run_dir, "rho.png")]) == 0
+    assert os.path.exists(os.path.join(run_dir, "rho.png"))
     assert main(["plot", run_dir, "--field", "nothing"]) == 2
     assert main(["plot", run_dir, "--field", "rho", "--step", "7"]) == 2
     assert main(["plot", run_dir, "--field", "rho", "--view", "xz"]) == 2  # a 2D run
