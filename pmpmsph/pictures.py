@@ -60,13 +60,28 @@ def field_values(snap, spec):
 
 
 def particle_size(snap, dim):
-    """Each particle's edge length, (mass / rho)^(1/dim); a uniform guess without them."""
+    """Each particle's edge length: (mass / rho)^(1/dim) when the snapshot has both, else
+    per body the median distance from a sample of its particles to their nearest neighbour
+    (a run that did not write `mass`)."""
     if "mass" in snap and "rho" in snap:
         vol = np.asarray(snap["mass"], float) / np.maximum(np.asarray(snap["rho"], float), 1e-300)
         return vol ** (1.0 / dim)
-    x = np.asarray(snap["x"], float)
-    span = np.ptp(x[:, :dim], axis=0).max() if len(x) else 1.0
-    return np.full(len(x), span / max(len(x), 1) ** (1.0 / dim))
+    x = np.asarray(snap["x"], float)[:, :dim]
+    body = np.asarray(snap["body"]) if "body" in snap else np.zeros(len(x), int)
+    size = np.zeros(len(x))
+    rng = np.random.default_rng(0)
+    for b in np.unique(body):
+        rows = np.flatnonzero(body == b)
+        pts = x[rows]
+        sample = pts[rng.choice(len(pts), min(len(pts), 300), replace=False)]
+        nearest = []
+        for chunk in np.array_split(sample, max(len(sample) // 50, 1)):
+            d2 = ((chunk[:, None, :] - pts[None, :, :]) ** 2).sum(-1)
+            d2[d2 == 0.0] = np.inf  # the particle itself
+            nearest.append(np.sqrt(d2.min(axis=1)))
+        nn = np.concatenate(nearest)
+        size[rows] = np.median(nn[np.isfinite(nn)]) if np.isfinite(nn).any() else 1.0
+    return size
 
 
 def run_dimension(run, snap):
