@@ -30,7 +30,17 @@ def main(argv: "list[str] | None" = None) -> None:
     tp.add_argument("--no-peers", action="store_true")
     tp.add_argument("--install-peers", action="store_true")
     tp.add_argument("--out", default="bench_results")
-    sc = sub.add_parser("scaling", help="strong scaling 1..N ranks, per-phase times")
+    sc = sub.add_parser("scaling", help="strong or weak scaling 1..N ranks, per-phase times, "
+                        "messages and bytes per step; scaling.json and scaling.png")
+    sc.add_argument("--case", default=None,
+                    help="any case file (MPM, SPH, TL-SPH, coupled; 1D-3D) instead of --scene")
+    sc.add_argument("--set", action="append", default=[], dest="sets", metavar="KEY=VALUE",
+                    help="--case: override a key, as `python -m pmpmsph --set` (repeatable)")
+    sc.add_argument("--weak", action="store_true",
+                    help="weak scaling: N copies of the scene side by side along the slab "
+                         "axis on N ranks (fixed particles per rank)")
+    sc.add_argument("--warmup", type=int, default=10,
+                    help="steps before the timing (compile/cache load, first balance)")
     sc.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     sc.add_argument("--scene", default="column", choices=["column", "coupled_dam"],
                     help="the MPM water column (--particles) or the coupled dam break on "
@@ -70,7 +80,8 @@ def main(argv: "list[str] | None" = None) -> None:
     ac.add_argument("--scenes", nargs="+", help="study keys (default: all), e.g. spring")
     ac.add_argument("--out", default=os.path.join("bench_results", "accuracy"))
     ac.add_argument("--readme", action="store_true",
-                    help="copy the figures to docs/accuracy/ and rewrite the README section")
+                    help="copy the figures to docs/accuracy/ and rewrite the summary in "
+                    "docs/speed_vs_error.md")
     ac.add_argument("--report-only", action="store_true",
                     help="rebuild plots and summary from the CSVs in --out")
     fl = sub.add_parser("floats", help="floating blocks in every method combination "
@@ -141,7 +152,8 @@ def main(argv: "list[str] | None" = None) -> None:
         from .scaling import run
 
         run(args.ranks, args.particles, args.steps, args.out, args.output_every,
-            repeat=args.repeat, scene=args.scene, spacing=args.spacing)
+            repeat=args.repeat, scene=args.scene, spacing=args.spacing, case=args.case,
+            sets=args.sets, weak=args.weak, warmup=args.warmup)
         if args.corun:
             from .scaling import corun
 
