@@ -12,14 +12,16 @@ for vectors and tensors:
 
 Each particle is drawn as a square-ish marker of its own size (the edge of its volume,
 (mass / rho)^(1/d)), coloured by the field, with a colour bar and the time. A 3D run is
-drawn as a projection on a coordinate plane (``view``, nearer particles on top) or as a
-slice one particle thick (``slice_at``: the particles within half a particle size of that
-coordinate along the plane's normal).
+drawn as a projection on a coordinate plane (``view``, nearer particles on top; the case's
+SPH dummy walls left out, which would hide the rest) or as a slice one particle thick
+(``slice_at``: the particles within three quarters of a particle size of that coordinate
+along the plane's normal). ``bodies`` picks the bodies drawn (their indices in the case).
 """
 import os
 
 import numpy as np
 
+from .config import load_case_text
 from .io.derived_fields import derived_field
 from .io.results import read
 
@@ -96,17 +98,21 @@ def run_dimension(run, snap):
 class Frame:
     """What one picture shows: the projected positions, sizes, values and depth order."""
 
-    def __init__(self, snap, spec, dim, view="xy", slice_at=None):
+    def __init__(self, snap, spec, dim, view="xy", slice_at=None, bodies=None):
         values, self.label = field_values(snap, spec)
         x = np.asarray(snap["x"], float)
         size = particle_size(snap, dim)
         a, b = _AXES[view[0]], _AXES[view[1]]
         keep = np.ones(len(x), bool)
+        if bodies is not None and "body" in snap:
+            keep = np.isin(snap["body"], list(bodies))
         order = np.arange(len(x))
         if dim == 3:
             normal = 3 - a - b
-            if slice_at is not None:
-                keep = np.abs(x[:, normal] - slice_at) <= 0.5 * size
+            if slice_at is not None:  # three quarters of a particle: a slice between two
+                # lattice layers takes both rather than neither (a flow's particles sit a
+                # little closer than their seeded spacing)
+                keep &= np.abs(x[:, normal] - slice_at) <= 0.75 * size
             # a right-handed view looks down -normal: larger coordinates are nearer
             sign = 1.0 if (a, b) in ((0, 1), (1, 2), (2, 0)) else -1.0
             order = np.argsort(sign * x[:, normal], kind="stable")
@@ -178,14 +184,26 @@ def _figure(frames, title, limits=None):
     return fig, show, plt
 
 
-def _frames(run, spec, steps, view, slice_at):
+def _frames(run, spec, steps, view, slice_at, bodies):
     picked = _pick(run, steps)
     first = run[picked[0]]
     dim = run_dimension(run, first)
-    if dim < 3 and view != "xy":
-        raise ValueError(f"--view {view} is for 3D runs; this run is {dim}D")
-    return [Frame(first if k == picked[0] else run[k], spec, dim, view, slice_at)
+    if dim < 3 and (view != "xy" or slice_at is not None):
+        raise ValueError(f"--view and --slice are for 3D runs; this run is {dim}D")
+    if bodies is None and dim == 3 and slice_at is None:
+        bodies = _not_walls(run)
+    return [Frame(first if k == picked[0] else run[k], spec, dim, view, slice_at, bodies)
             for k in picked]
+
+
+def _not_walls(run):
+    """The bodies of the run's case that are not SPH dummy walls (a 3D projection through
+    a tank shows its walls only), or None (all) when the case text cannot be read back."""
+    try:
+        case = load_case_text(run.case_text)
+    except Exception:  # noqa: BLE001 - a Python-built scene or a mesh file not found: draw all
+        return None
+    return {i for i, body in enumerate(case.bodies) if not body.wall}
 
 
 def _pick(run, steps):
@@ -208,11 +226,12 @@ def _title(run):
     return run.attrs.get("case_name") or os.path.basename(os.path.normpath(run.folder))
 
 
-def plot_field(run_path, spec, steps=None, out=None, view="xy", slice_at=None, limits=None):
+def plot_field(run_path, spec, steps=None, out=None, view="xy", slice_at=None, limits=None,
+               bodies=None):
     """One PNG per chosen snapshot (same colour range for all: `limits` (vmin, vmax), by
     default the range over the chosen snapshots); returns their paths."""
     run = read(run_path)
-    frames = _frames(run, spec, steps, view, slice_at)
+    frames = _frames(run, spec, steps, view, slice_at, bodies)
     fig, show, plt = _figure(frames, _title(run), limits)
     safe = spec.replace("|", "").replace(".", "_")
     paths = []
@@ -226,13 +245,14 @@ def plot_field(run_path, spec, steps=None, out=None, view="xy", slice_at=None, l
     return paths
 
 
-def movie(run_path, spec, out=None, view="xy", slice_at=None, fps=10, limits=None):
+def movie(run_path, spec, out=None, view="xy", slice_at=None, fps=10, limits=None,
+          bodies=None):
     """An animation over every snapshot: MP4 when ffmpeg exists and `out` ends in .mp4,
     else a GIF (Pillow). Returns its path."""
     import matplotlib.animation as animation  # noqa: PLC0415 - optional, for movies only
 
     run = read(run_path)
-    frames = _frames(run, spec, "all", view, slice_at)
+    frames = _frames(run, spec, "all", view, slice_at, bodies)
     fig, show, plt = _figure(frames, _title(run), limits)
     safe = spec.replace("|", "").replace(".", "_")
     out = out or os.path.join(run.folder, f"{safe}.gif")

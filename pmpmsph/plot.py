@@ -89,8 +89,11 @@ def main(argv=None):
     ap.add_argument("--view", default="xy", choices=("xy", "xz", "yz", "yx", "zx", "zy"),
                     help="3D: the plane to project on (default xy)")
     ap.add_argument("--slice", type=float, default=None, metavar="COORD",
-                    help="3D: only the particles within half a particle of this coordinate "
+                    help="3D: only the particles within 3/4 of a particle of this coordinate "
                     "along the view's normal")
+    ap.add_argument("--body", type=int, action="append", default=None, metavar="I",
+                    help="draw only body I (its index in the case; repeatable). Default: all "
+                    "bodies, but in a 3D projection not the SPH walls")
     ap.add_argument("--range", type=float, nargs=2, default=None, metavar=("MIN", "MAX"),
                     help="colour range (default: the range over the snapshots drawn)")
     args = ap.parse_args(argv)
@@ -104,13 +107,13 @@ def main(argv=None):
                 paths.append(plot_probes(os.path.dirname(probes)))
         elif args.movie:
             paths = [movie(_run_of(args.run), args.field, args.output, args.view, args.slice,
-                           limits=args.range)]
+                           limits=args.range, bodies=args.body)]
         else:
             steps = args.step
             if steps is not None and "all" in steps:
                 steps = "all"
             paths = plot_field(_run_of(args.run), args.field, steps, args.output, args.view,
-                               args.slice, limits=args.range)
+                               args.slice, limits=args.range, bodies=args.body)
     except (OSError, ValueError, KeyError) as exc:
         msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
         print(f"error: {msg}", file=sys.stderr)

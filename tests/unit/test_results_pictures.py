@@ -82,6 +82,10 @@ def test_3d_slice_and_projection():
     assert len(cut.values) == 9 and np.all(cut.values == 1.0)
     whole = Frame(snap, "h", 3, "xy")
     assert len(whole.values) == 27 and np.all(np.diff(whole.values) >= 0)
+    halfway = Frame(snap, "h", 3, "xy", slice_at=1.5)  # between two layers: both
+    assert sorted(set(halfway.values)) == [1.0, 2.0] and len(halfway.values) == 18
+    snap["body"] = (g[:, 0] > 0).astype(int)  # body 0: the x = 0 face
+    assert len(Frame(snap, "h", 3, "xy", bodies={1}).values) == 18
     side = Frame(snap, "h", 3, "xz", slice_at=0.0)
     assert len(side.values) == 9 and side.xy.shape == (9, 2)
     np.testing.assert_array_equal(np.sort(side.xy[:, 1]), np.repeat([0.0, 1.0, 2.0], 3))
@@ -104,3 +108,6 @@ def test_plot_field_pictures_and_movie(run_dir):
     assert main(["plot", run_dir, "--field", "nothing"]) == 2
     assert main(["plot", run_dir, "--field", "rho", "--step", "7"]) == 2
     assert main(["plot", run_dir, "--field", "rho", "--view", "xz"]) == 2  # a 2D run
+    assert main(["plot", run_dir, "--field", "rho", "--slice", "0.5"]) == 2
+    assert main(["plot", run_dir, "--field", "rho", "--body", "0", "-o",
+                 os.path.join(run_dir, "body0.png")]) == 0
