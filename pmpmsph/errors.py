@@ -3,6 +3,7 @@
 `ConfigError` stops a run before step 1 (exit status 2) and names the TOML key;
 `RunError` stops a running simulation (exit status 3) and names step, particle and cause.
 """
+import difflib
 import math
 
 EXIT_CONFIG = 2
@@ -16,6 +17,13 @@ def is_finite(v):
         return math.isfinite(v)
     except OverflowError:
         return False
+
+
+def did_you_mean(word, candidates):
+    """' (did you mean 'x'?)' for the closest of `candidates` (difflib's ratio >= 0.6, the
+    threshold its `get_close_matches` uses), else ''."""
+    close = difflib.get_close_matches(str(word), sorted(candidates), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def short_repr(v):

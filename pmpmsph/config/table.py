@@ -6,7 +6,7 @@ getter asked for, so a misspelt key is an error rather than silently ignored.
 import difflib
 import numbers
 
-from ..errors import ConfigError, is_finite
+from ..errors import ConfigError, did_you_mean, is_finite
 from ..errors import short_repr as _short
 
 _MISSING = object()
@@ -135,9 +135,3 @@ class Table:
             known = self.asked
             raise ConfigError(self.key(extra[0]), "unknown key" + did_you_mean(extra[0], known))
 
-
-def did_you_mean(word, candidates):
-    """' (did you mean 'x'?)' for the closest of `candidates` (difflib's ratio >= 0.6, the
-    threshold its `get_close_matches` uses), else ''."""
-    close = difflib.get_close_matches(str(word), sorted(candidates), n=1)
-    return f" (did you mean {close[0]!r}?)" if close else ""

@@ -24,7 +24,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..errors import ConfigError, is_finite
+from ..errors import ConfigError, did_you_mean, is_finite
 from ..errors import short_repr as _short
 from .codes import NPAR
 
@@ -162,7 +162,8 @@ def material_from_table(table, key, dim, models):
         raise ConfigError(f"{key}.model", f"required value is missing; valid models: {valid}")
     name = table["model"]
     if not isinstance(name, str) or name not in models:
-        raise ConfigError(f"{key}.model", f"unknown model {name!r}; valid models: {valid}")
+        raise ConfigError(f"{key}.model", f"unknown model {name!r}{did_you_mean(name, models)}; "
+                          f"valid models: {valid}")
     cls = models[name]
     required = list(cls.required)
     optional = list(cls.optional)
@@ -175,7 +176,8 @@ def material_from_table(table, key, dim, models):
     allowed = set(required) | set(optional) | {"model"}
     for f in table:
         if f not in allowed:
-            raise ConfigError(f"{key}.{f}", f"unknown key for model {name!r}; allowed: "
+            raise ConfigError(f"{key}.{f}", f"unknown key for model {name!r}"
+                              f"{did_you_mean(f, allowed)}; allowed: "
                               f"{', '.join(required + optional)}")
     values = {}
     for f in required + optional:

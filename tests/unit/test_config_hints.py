@@ -3,7 +3,7 @@
 import pytest
 
 from pmpmsph import ConfigError, load_case_text
-from pmpmsph.config.table import did_you_mean
+from pmpmsph.errors import did_you_mean
 
 from test_config import GOOD
 
@@ -14,6 +14,9 @@ from test_config import GOOD
     ("length = ", "lenght = ", "grid.length", "is 'lenght' a misspelling of it"),
     ('shape = "box"', 'shape = "bxo"', "bodies[0].shape", "did you mean 'box'"),
     ('type = "slip"', 'type = "slp"', "boundaries[0].type", "did you mean 'slip'"),
+    ('model = "neo_hookean"', 'model = "neo_hooken"', "materials.rubber.model",
+     "did you mean 'neo_hookean'"),
+    ("nu = 0.3", "nuu = 0.3", "materials.rubber.nuu", "did you mean 'nu'"),
 ])
 def test_misspellings_get_a_hint(old, new, key, hint):
     with pytest.raises(ConfigError) as err:
