@@ -28,7 +28,7 @@ def _rates(x, v, mass, rho, p, method, mat, fluid, h, gravity=None):
             sigma[:, i, i] = -p
         pw = np.zeros(n)
         mirror_pressure(smoothing_of((0, 0), (0,), h), pair_lists(n, start, index), x, rho,
-                        sigma, mat, fluid, gravity, pw)
+                        sigma, method, mat, fluid, gravity, pw)
     S = np.zeros((n, 6))
     S[:, 0] = S[:, 1] = S[:, 2] = -p / rho**2
     acc, drho, L = np.zeros((n, 2)), np.zeros(n), np.zeros((n, 3, 3))

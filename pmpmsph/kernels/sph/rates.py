@@ -79,6 +79,14 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
     stress) leave such a fluid neighbour out: the fluid acts on it by pressure alone (an SPH
     solid in MPM water sheared with the water's velocities and blew up;
     physics/sph/solid_in_fluid.py).
+    A dummy wall (of a fluid material) and an SPH solid meet in the same pair form with the
+    wall's pressure towards solids, `pws` (`kernels.sph.walls.wall_state`: Adami et al.'s
+    eq. 27 over the solid's rows) and the solid's own pressure p_s:
+        dv_s/dt += -V_w (max(p_s, 0) + max(pws_w, 0))/rho_s grad_s W_sw,
+    Adami et al.'s (2012) wall force (their eq. 10 with the wall's pressure of eq. 27) with
+    the wall's density taken as the solid's: the wall holds a resting solid up by the
+    solid's own weight, whatever water stands beside it (whose pressure the same wall takes
+    towards the fluid). Without walls (`pws` empty) such pairs do not occur.
     Other material interfaces (two solids, two fluids) keep the contact pressure
     p_c = max(p_a, p_b, 0) on both ends, -p_c (1/rho_a^2 + 1/rho_b^2) I: the full sigma/rho^2
     term would let a solid in tension pull the other body's particles into it; within one
@@ -147,7 +155,7 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
     x, v, vg, mass, rho, S, cs, method, mat = rows
     (corr_tag, fluid, gravity, damping, av_alpha, av_beta, want_force, want_L, want_fsi,
      split) = options
-    R, as_n, w_dp, B, liu, dcoef, gradrho, morris_mu, pw, clamped = terms
+    R, as_n, w_dp, B, liu, dcoef, gradrho, morris_mu, pw, clamped, pws = terms
     acc, drho, L, fsi, fcpl = out
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
@@ -169,6 +177,7 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
     gx1 = gravity[1] if dim > 1 else 0.0
     gx2 = gravity[2] if dim > 2 else 0.0
     with_pw = pw.shape[0] > 0  # (else the plain mirror: the fluid's own pressure)
+    with_pws = pws.shape[0] > 0  # (dummy walls: their pressure towards solids)
     with_clamped = clamped.shape[0] > 0  # (mirror clamps of an updated solid)
     pairwise = morris_mu.shape[0] > 0  # (Morris' viscosity)
     if want_fsi or one_sided:
@@ -376,7 +385,12 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
             else:  # material interface: compressive pressure only (docstring)
                 pa = -(S[a, 0] + S[a, 1] + S[a, 2]) * rho[a] * rho[a] / 3.0
                 pb = -(S[b, 0] + S[b, 1] + S[b, 2]) * rho[b] * rho[b] / 3.0
-                if mirror_a:  # m_b q = -V_b (p_a + p_w,b)/rho_a
+                if mirror_a and with_pws and method[a] == WALL:
+                    # a dummy wall on a solid: the wall's solid-side pressure (docstring)
+                    q = -(max(pws[a], 0.0) + max(pb, 0.0)) / (rho[a] * rho[b]) - pi
+                elif mirror_b and with_pws and method[b] == WALL:
+                    q = -(max(pws[b], 0.0) + max(pa, 0.0)) / (rho[a] * rho[b]) - pi
+                elif mirror_a:  # m_b q = -V_b (p_a + p_w,b)/rho_a
                     pm = pw[b] if with_pw else pa
                     q = -(max(pa, 0.0) + max(pm, 0.0)) / (rho[a] * rho[b]) - pi
                 elif mirror_b:

@@ -190,6 +190,8 @@ class SPHStage:
         ]
         if any(b.wall for b in case.bodies):
             out.append(FieldSpec("vg", ("dim",), migrate=False, halo=True))
+            # the walls' pressure towards SPH solids (kernels/sph/walls.py wall_state)
+            out.append(FieldSpec("pws", (), migrate=False, halo=True))
         if fluid_meets_solid(case):  # the fluid pressure at solid rows (mirror pairs)
             out.append(FieldSpec("pw", (), migrate=False, halo=True))
         if case.sph.artificial_stress > 0:
@@ -334,7 +336,8 @@ class SPHStage:
         dcoef, gradrho = self._diffusion()
         return rate_terms(R=R, as_n=self.spec.artificial_stress_exponent,
                           w_dp=self.w_dp, B=self._B(), liu=self._liu(), dcoef=dcoef,
-                          gradrho=gradrho, morris_mu=self.morris_mu, pw=pw, clamped=clamped)
+                          gradrho=gradrho, morris_mu=self.morris_mu, pw=pw, clamped=clamped,
+                          pws=self.p.with_halo("pws") if "pws" in self.p else None)
 
     def _B(self):
         return self.p.with_halo("B") if self.corr and not self.liu else None
@@ -468,7 +471,7 @@ class SPHStage:
         self._place_ghosts()
         # the wall velocities and the solids' mirrored pressures are derived below from the
         # refreshed rows and then refreshed themselves: not sent twice
-        self._update_neighbours(skip=("vg", "pw"))
+        self._update_neighbours(skip=("vg", "pws", "pw"))
         n, nt = p.n_owned, p.n_total
         x = p.with_halo("x")
         if "vg" in p:
@@ -477,14 +480,16 @@ class SPHStage:
                                     p.with_halo("vg"))
                 wall_state(self._smoothing(), self._pairs(n), x, p.with_halo("v"),
                            p.with_halo("rho"), p.with_halo("sigma"), p.with_halo("method"),
-                           p.with_halo("mat"), (self.mtypes, self.mparams), self.gravity,
-                           self.no_slip, p.with_halo("vg"))
+                           p.with_halo("mat"), (self.mtypes, self.mparams), self.fluid,
+                           self.gravity, self.no_slip, p.with_halo("vg"), p.with_halo("pws"))
         if "pw" in p:  # (after the walls: a wall of a solid material is a solid row too)
             with t.phase("sph"):
                 mirror_pressure(self._smoothing(), self._pairs(n), x, p.with_halo("rho"),
-                                p.with_halo("sigma"), p.with_halo("mat"), self.fluid,
+                                p.with_halo("sigma"), p.with_halo("method"),
+                                p.with_halo("mat"), self.fluid,
                                 self.gravity, p.with_halo("pw"))
-        derived = (("rho", "sigma", "vg") if "vg" in p else ()) + (("pw",) if "pw" in p else ())
+        derived = ((("rho", "sigma", "vg", "pws") if "vg" in p else ())
+                   + (("pw",) if "pw" in p else ()))
         if derived and self.halo_enabled:
             with t.phase("halo"):
                 self.halo.refresh(derived)
