@@ -14,11 +14,14 @@ The switches are inlined into the calling kernel at the Numba IR level
 costs about as much as the stress update of the simple models (measured 20-40 ns per
 particle saved by inlining).
 
-`compute_stress_tagged` / `strain_energy_tagged` take a compile-time tag instead when
-every particle of a kernel call has one type (`material_tag`): the Numba overloads below
-pick that model while *typing* the caller, so only its code is compiled and inlined (a
-runtime switch over all the models, inlined in a particle loop, cost ~4x the stress
-update itself and multiplied compile time).
+`compute_stress_tagged` / `strain_energy_tagged` / `wave_speed_tagged` take a compile-time
+tag of the *set* of models a kernel call meets (`material_tag`): the Numba overloads below
+read the set while typing the caller and inline the switch over those models only (one
+model: its law, no switch). A runtime switch over every registered model, inlined in a
+particle loop, costs ~4x the stress update itself and multiplies compile time: G2P with
+all eleven models took 300-480 s to compile, 64 % of the test suite's compile time on a
+cold cache (tests/conftest.py's compile log, 2026-11-28); over the two models of a float
+it takes a few seconds. An empty tag still means the switch over every model.
 """
 import numpy as np
 from numba.extending import overload
@@ -51,74 +54,108 @@ wave_speed = code_switch("wave_speed", "par, J", _SPEED_BY_CODE, "return np.nan"
 
 
 def material_tag(codes):
-    """Compile-time tag for the `_tagged` entry points: one type code -> (0,)*(code+1),
-    else ()."""
-    codes = set(int(c) for c in codes)
-    return (0,) * (codes.pop() + 1) if len(codes) == 1 else ()
+    """Compile-time tag of the set of type codes `codes`: one tuple (0,)*(code+1) per code
+    present, in code order (its type carries the codes: Numba types a tuple of tuples of
+    different lengths as a tuple of their lengths)."""
+    return tuple((0,) * (code + 1) for code in sorted(set(int(c) for c in codes)))
+
+
+def _tag_codes(mtag):
+    """The type codes a typed `material_tag` stands for (empty: every model)."""
+    return tuple(t.count - 1 for t in mtag.types)
+
+
+_SUBSET_SWITCHES = {}
+
+
+def _switch_over(kind, codes):
+    """The compiled switch of `kind` ('stress', 'energy', 'speed') over the models `codes`
+    only (generated once per set and process, inlined into its callers)."""
+    key = (kind, codes)
+    if key not in _SUBSET_SWITCHES:
+        table, args, missing = {
+            "stress": (_STRESS_BY_CODE, "F, L, dt, state, par, sigma", "_nan_stress(sigma)"),
+            "energy": (_ENERGY_BY_CODE, "F, state, par", "return np.nan"),
+            "speed": (_SPEED_BY_CODE, "par, J", "return np.nan")}[kind]
+        name = f"{kind}_over_" + "_".join(str(c) for c in codes)
+        _SUBSET_SWITCHES[key] = code_switch(name, args, {c: table[c] for c in codes},
+                                            missing, _nan_stress=_nan_stress, np=np)
+    return _SUBSET_SWITCHES[key]
 
 
 def compute_stress_tagged(mtag, mtype, F, L, dt, state, par, sigma):
-    """`compute_stress` with the type fixed at compile time when `mtag` is not empty
-    (module doc). This Python body is what runs under NUMBA_DISABLE_JIT=1."""
-    if len(mtag) == 0:
-        compute_stress(mtype, F, L, dt, state, par, sigma)
-    else:
-        _STRESS_BY_CODE[len(mtag) - 1](F, L, dt, state, par, sigma)
+    """`compute_stress` over the models of `mtag` only, chosen at compile time (module doc).
+    This Python body is what runs under NUMBA_DISABLE_JIT=1."""
+    compute_stress(mtype, F, L, dt, state, par, sigma)
 
 
 @overload(compute_stress_tagged, inline="always")
 def _compute_stress_tagged_typed(mtag, mtype, F, L, dt, state, par, sigma):
-    count = len(mtag.types)
-    if count == 0:
+    codes = _tag_codes(mtag)
+    if len(codes) == 0:
         def switch(mtag, mtype, F, L, dt, state, par, sigma):
             compute_stress(mtype, F, L, dt, state, par, sigma)
         return switch
-    model = _STRESS_BY_CODE[count - 1]
+    if len(codes) == 1:
+        model = _STRESS_BY_CODE[codes[0]]
 
-    def fixed(mtag, mtype, F, L, dt, state, par, sigma):
-        model(F, L, dt, state, par, sigma)
-    return fixed
+        def fixed(mtag, mtype, F, L, dt, state, par, sigma):
+            model(F, L, dt, state, par, sigma)
+        return fixed
+    subset = _switch_over("stress", codes)
+
+    def among(mtag, mtype, F, L, dt, state, par, sigma):
+        subset(mtype, F, L, dt, state, par, sigma)
+    return among
 
 
 def strain_energy_tagged(mtag, mtype, F, state, par):
-    """`strain_energy` with the type fixed at compile time when `mtag` is not empty (as
-    `compute_stress_tagged`). This body runs under NUMBA_DISABLE_JIT=1."""
-    if len(mtag) == 0:
-        return strain_energy(mtype, F, state, par)
-    return _ENERGY_BY_CODE[len(mtag) - 1](F, state, par)
+    """`strain_energy` over the models of `mtag` only (as `compute_stress_tagged`). This
+    body runs under NUMBA_DISABLE_JIT=1."""
+    return strain_energy(mtype, F, state, par)
 
 
 @overload(strain_energy_tagged, inline="always")
 def _strain_energy_tagged_typed(mtag, mtype, F, state, par):
-    count = len(mtag.types)
-    if count == 0:
+    codes = _tag_codes(mtag)
+    if len(codes) == 0:
         def switch(mtag, mtype, F, state, par):
             return strain_energy(mtype, F, state, par)
         return switch
-    model = _ENERGY_BY_CODE[count - 1]
+    if len(codes) == 1:
+        model = _ENERGY_BY_CODE[codes[0]]
 
-    def fixed(mtag, mtype, F, state, par):
-        return model(F, state, par)
-    return fixed
+        def fixed(mtag, mtype, F, state, par):
+            return model(F, state, par)
+        return fixed
+    subset = _switch_over("energy", codes)
+
+    def among(mtag, mtype, F, state, par):
+        return subset(mtype, F, state, par)
+    return among
 
 
 def wave_speed_tagged(mtag, mtype, par, J):
-    """`wave_speed` with the type fixed at compile time when `mtag` is not empty (as
-    `compute_stress_tagged`). This body runs under NUMBA_DISABLE_JIT=1."""
-    if len(mtag) == 0:
-        return wave_speed(mtype, par, J)
-    return _SPEED_BY_CODE[len(mtag) - 1](par, J)
+    """`wave_speed` over the models of `mtag` only (as `compute_stress_tagged`). This body
+    runs under NUMBA_DISABLE_JIT=1."""
+    return wave_speed(mtype, par, J)
 
 
 @overload(wave_speed_tagged, inline="always")
 def _wave_speed_tagged_typed(mtag, mtype, par, J):
-    count = len(mtag.types)
-    if count == 0:
+    codes = _tag_codes(mtag)
+    if len(codes) == 0:
         def switch(mtag, mtype, par, J):
             return wave_speed(mtype, par, J)
         return switch
-    model = _SPEED_BY_CODE[count - 1]
+    if len(codes) == 1:
+        model = _SPEED_BY_CODE[codes[0]]
 
-    def fixed(mtag, mtype, par, J):
-        return model(par, J)
-    return fixed
+        def fixed(mtag, mtype, par, J):
+            return model(par, J)
+        return fixed
+    subset = _switch_over("speed", codes)
+
+    def among(mtag, mtype, par, J):
+        return subset(mtype, par, J)
+    return among

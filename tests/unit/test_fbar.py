@@ -6,7 +6,7 @@ import pytest
 from pmpmsph.errors import ConfigError
 from pmpmsph.kernels.mpm.fbar import fbar_stress
 from pmpmsph.kernels.mpm.views import material_table
-from pmpmsph.materials.dispatch import compute_stress
+from pmpmsph.materials.dispatch import compute_stress, material_tag
 from pmpmsph.materials.elastic import NeoHookean
 from pmpmsph.materials.von_mises import VonMises
 from pmpmsph.scene_api import Scene
@@ -32,8 +32,9 @@ def test_fbar_keeps_the_deviatoric_part_and_takes_the_average(dim):
     states = np.tile(CLAY.initial_state(), (n, 1))
     sigma = np.zeros((n, 3, 3))
     F0, vol_before = F.copy(), vol.copy()
-    bad = fbar_stress(dim, np.array([True, False]), material_table((), types, params), mat, F,
-                      vol, vol0, Jbar, 1e-3, states, sigma)
+    table = material_table(material_tag(types), types, params)
+    bad = fbar_stress(dim, np.array([True, False]), table, mat, F, vol, vol0, Jbar, 1e-3, states,
+                      sigma)
     assert bad == -1
     for p in range(n):
         if mat[p] == 1:  # untouched
