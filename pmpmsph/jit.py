@@ -74,17 +74,24 @@ def code_switch(name, args, functions, missing, **scope):
     """A compiled `def name(code, args)` that returns `functions[code](args)` (or the
     number `functions[code]` itself, for a table of constants), and runs the
     statement `missing` (with the names in `scope`) for any other code: the `if` chain over
-    a registry (materials, SPH smoothing kernels), written out as source. Inlined into its
+    a registry (materials, SPH smoothing kernels), written out as source. `missing=None`
+    when no other code can occur (a set known at compile time): the last entry is then
+    the `else`, and a single entry is called without a test. Inlined into its
     callers at the Numba IR level, so not cached on disk itself (the callers' cache holds
     it); compiled once per process."""
     lines = [f"def {name}(code, {args}):"]
-    for i, (code, function) in enumerate(sorted(functions.items())):
-        lines.append(f"    {'if' if i == 0 else 'elif'} code == {code}:")
+    entries = sorted(functions.items())
+    for i, (code, function) in enumerate(entries):
+        if missing is None and i == len(entries) - 1:
+            lines.append("    if True:" if i == 0 else "    else:")
+        else:
+            lines.append(f"    {'if' if i == 0 else 'elif'} code == {code}:")
         if callable(function):
             scope[f"case{code}"] = function
             lines.append(f"        return case{code}({args})")
         else:  # a constant of the registry (a number), folded into the caller
             lines.append(f"        return {function!r}")
-    lines.append(f"    {missing}")
+    if missing is not None:
+        lines.append(f"    {missing}")
     exec(compile("\n".join(lines), f"<generated {name}>", "exec"), scope)
     return njit(inline="always", cache=False)(scope[name])

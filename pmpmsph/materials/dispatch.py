@@ -65,21 +65,25 @@ def _tag_codes(mtag):
     return tuple(t.count - 1 for t in mtag.types)
 
 
+_TABLES = {"stress": (_STRESS_BY_CODE, "F, L, dt, state, par, sigma", compute_stress),
+           "energy": (_ENERGY_BY_CODE, "F, state, par", strain_energy),
+           "speed": (_SPEED_BY_CODE, "par, J", wave_speed)}
 _SUBSET_SWITCHES = {}
 
 
-def _switch_over(kind, codes):
-    """The compiled switch of `kind` ('stress', 'energy', 'speed') over the models `codes`
-    only (generated once per set and process, inlined into its callers)."""
+def _switch_over(kind, mtag):
+    """The compiled `f(code, args)` of `kind` ('stress', 'energy', 'speed') over the models
+    of the typed tag `mtag`: the switch over every model for an empty tag, else over the
+    tag's models only, with no test for the last (one model: its law, called directly).
+    Generated once per set and process, inlined into its callers."""
+    table, args, every = _TABLES[kind]
+    codes = _tag_codes(mtag)
+    if not codes:
+        return every
     key = (kind, codes)
     if key not in _SUBSET_SWITCHES:
-        table, args, missing = {
-            "stress": (_STRESS_BY_CODE, "F, L, dt, state, par, sigma", "_nan_stress(sigma)"),
-            "energy": (_ENERGY_BY_CODE, "F, state, par", "return np.nan"),
-            "speed": (_SPEED_BY_CODE, "par, J", "return np.nan")}[kind]
         name = f"{kind}_over_" + "_".join(str(c) for c in codes)
-        _SUBSET_SWITCHES[key] = code_switch(name, args, {c: table[c] for c in codes},
-                                            missing, _nan_stress=_nan_stress, np=np)
+        _SUBSET_SWITCHES[key] = code_switch(name, args, {c: table[c] for c in codes}, None)
     return _SUBSET_SWITCHES[key]
 
 
@@ -91,22 +95,11 @@ def compute_stress_tagged(mtag, mtype, F, L, dt, state, par, sigma):
 
 @overload(compute_stress_tagged, inline="always")
 def _compute_stress_tagged_typed(mtag, mtype, F, L, dt, state, par, sigma):
-    codes = _tag_codes(mtag)
-    if len(codes) == 0:
-        def switch(mtag, mtype, F, L, dt, state, par, sigma):
-            compute_stress(mtype, F, L, dt, state, par, sigma)
-        return switch
-    if len(codes) == 1:
-        model = _STRESS_BY_CODE[codes[0]]
+    switch = _switch_over("stress", mtag)
 
-        def fixed(mtag, mtype, F, L, dt, state, par, sigma):
-            model(F, L, dt, state, par, sigma)
-        return fixed
-    subset = _switch_over("stress", codes)
-
-    def among(mtag, mtype, F, L, dt, state, par, sigma):
-        subset(mtype, F, L, dt, state, par, sigma)
-    return among
+    def impl(mtag, mtype, F, L, dt, state, par, sigma):
+        switch(mtype, F, L, dt, state, par, sigma)
+    return impl
 
 
 def strain_energy_tagged(mtag, mtype, F, state, par):
@@ -117,22 +110,11 @@ def strain_energy_tagged(mtag, mtype, F, state, par):
 
 @overload(strain_energy_tagged, inline="always")
 def _strain_energy_tagged_typed(mtag, mtype, F, state, par):
-    codes = _tag_codes(mtag)
-    if len(codes) == 0:
-        def switch(mtag, mtype, F, state, par):
-            return strain_energy(mtype, F, state, par)
-        return switch
-    if len(codes) == 1:
-        model = _ENERGY_BY_CODE[codes[0]]
+    switch = _switch_over("energy", mtag)
 
-        def fixed(mtag, mtype, F, state, par):
-            return model(F, state, par)
-        return fixed
-    subset = _switch_over("energy", codes)
-
-    def among(mtag, mtype, F, state, par):
-        return subset(mtype, F, state, par)
-    return among
+    def impl(mtag, mtype, F, state, par):
+        return switch(mtype, F, state, par)
+    return impl
 
 
 def wave_speed_tagged(mtag, mtype, par, J):
@@ -143,19 +125,8 @@ def wave_speed_tagged(mtag, mtype, par, J):
 
 @overload(wave_speed_tagged, inline="always")
 def _wave_speed_tagged_typed(mtag, mtype, par, J):
-    codes = _tag_codes(mtag)
-    if len(codes) == 0:
-        def switch(mtag, mtype, par, J):
-            return wave_speed(mtype, par, J)
-        return switch
-    if len(codes) == 1:
-        model = _SPEED_BY_CODE[codes[0]]
+    switch = _switch_over("speed", mtag)
 
-        def fixed(mtag, mtype, par, J):
-            return model(par, J)
-        return fixed
-    subset = _switch_over("speed", codes)
-
-    def among(mtag, mtype, par, J):
-        return subset(mtype, par, J)
-    return among
+    def impl(mtag, mtype, par, J):
+        return switch(mtype, par, J)
+    return impl
