@@ -54,7 +54,7 @@ def stress_drucker_prager(F, L, dt, state, par, sigma):
     eta = par[4]
     xi = par[5]
     eta_bar = par[6]
-    e, V, be = hencky_trial(F, state)
+    e, V, be, plane = hencky_trial(F, state)
     ev, m, d0, d1, d2 = hencky_split(e)
     p = K * ev
     root_j2 = math.sqrt(2.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # |2 G dev e|/sqrt 2
@@ -73,7 +73,7 @@ def stress_drucker_prager(F, L, dt, state, par, sigma):
         d1 *= scale
         d2 *= scale
         m = p / (3.0 * K)
-    store_return(F, V, be, p, G, m, d0, d1, d2, f > 0.0, state, sigma)
+    store_return(F, V, be, plane, p, G, m, d0, d1, d2, f > 0.0, state, sigma)
 
 
 @njit(fastmath=False)
@@ -82,7 +82,7 @@ def energy_drucker_prager(F, state, par):
     volume (no hardening: the plastic work is all dissipated)."""
     G = par[0]
     K = par[1]
-    e, _, _ = hencky_trial(F, state)
+    e, _, _, _ = hencky_trial(F, state)
     ev, _, d0, d1, d2 = hencky_split(e)
     return 0.5 * K * ev * ev + G * (d0 * d0 + d1 * d1 + d2 * d2)
 
