@@ -254,7 +254,7 @@ def _longer(x0, x1, x2, n, y0, y1, y2):
             big * ny + small * n)
 
 
-@njit(inline="always")
+@njit
 def sym_eigen(xx, yy, zz, xy, yz, xz):
     """Eigenvalues (w0, w1, w2) and eigenvectors (the columns of V, row-major 9-tuple) of a
     symmetric 3x3 matrix in closed form, to round-off (no ordering).
@@ -282,7 +282,11 @@ def sym_eigen(xx, yy, zz, xy, yz, xz):
     Jacobi rotation above: accurate even for a double eigenvalue, where the 2x2 is a
     multiple of the identity and any orthonormal pair in that plane is an answer.
 
-    Jacobi sweeps (the former method here) cost 20x as much in 3D (4-5 sweeps of three
+    A plain call, not inlined at Numba's IR level: its size, inlined into every model of
+    the kernels that switch over all of them at run time (SPH's stress, MPM's F-bar), made
+    their compilation exceed ten minutes (scalars in, a tuple out: no reference counting).
+
+    Jacobi sweeps (the former method here) cost 2-3x as much in 3D (4-5 sweeps of three
     rotations, each with two square roots and two divisions in a dependent chain)."""
     if yz == 0.0 and xz == 0.0:
         c, s, w0, w1 = _rotation(xx, yy, xy)
