@@ -12,7 +12,7 @@ from pmpmsph.errors import ConfigError
 from pmpmsph.materials import MODELS, material_from_table
 from pmpmsph.materials.dispatch import compute_stress, strain_energy
 from pmpmsph.materials.drucker_prager import DruckerPrager, plane_strain_match
-from plastic_state import assert_rotated
+from plastic_state import assert_rotated, random_rotation
 
 SAND = DruckerPrager(E=5e7, nu=0.3, rho=1800.0, friction_angle=30.0)
 CLAY = DruckerPrager(E=2e7, nu=0.35, rho=1900.0, friction_angle=20.0, cohesion=2e4,
@@ -148,10 +148,7 @@ def test_returns_onto_the_cone_and_dissipates(mat):
 
 def test_objective_under_a_superposed_rotation():
     rng = np.random.default_rng(13)
-    q, r = np.linalg.qr(rng.standard_normal((3, 3)))
-    Q = q * np.sign(np.diag(r))
-    if np.linalg.det(Q) < 0:
-        Q[:, 0] *= -1
+    Q = random_rotation(rng)
     s1, s2 = CLAY.initial_state(), CLAY.initial_state()
     F = np.diag([0.99, 0.995, 1.0])
     shear = np.zeros((3, 3))
@@ -304,10 +301,7 @@ def test_cut_off_returns_dissipate_on_random_paths():
 
 def test_cut_off_is_objective():
     rng = np.random.default_rng(29)
-    q, r = np.linalg.qr(rng.standard_normal((3, 3)))
-    Q = q * np.sign(np.diag(r))
-    if np.linalg.det(Q) < 0:
-        Q[:, 0] *= -1
+    Q = random_rotation(rng)
     s1, s2 = CUT.initial_state(), CUT.initial_state()
     F = np.eye(3)
     for _ in range(40):
