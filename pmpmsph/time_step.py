@@ -30,7 +30,7 @@ class TimeStepControl:
                 return c
         mtypes, mparams = self.materials
         return max_signal_speed(self.dim, p["v"][:n], p.deformation(n), p["mat"][:n], mtypes,
-                                mparams)
+                                mparams, self._mtag)
 
     def signal_speed(self):
         """Global max (c + |v|): reduced in the step's allreduce when the step computed it

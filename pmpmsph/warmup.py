@@ -67,7 +67,7 @@ def _dry_step(sim):
         particle_sums(sim.dim, p["x"], p["v"], p["mass"], p["vol0"], p.deformation(),
                       p["mat"], mtypes, mparams, mstate, sim.gravity, sim._sums,
                       sim._mtag)
-        max_signal_speed(sim.dim, p["v"], p.deformation(), p["mat"], mtypes, mparams)
+        max_signal_speed(sim.dim, p["v"], p.deformation(), p["mat"], mtypes, mparams, sim._mtag)
         if sim.decomposition is not None:
             dec = sim.decomposition
             slab_leavers(p["x"], dec.axis, dec.origin, 1.0 / dec.dx, dec.ncells,

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..jit import njit
 from .deformation import deformation_matrix, jacobian
-from ..materials.dispatch import strain_energy_tagged, wave_speed
+from ..materials.dispatch import strain_energy_tagged, wave_speed_tagged
 
 
 @njit
@@ -44,9 +44,9 @@ def particle_sums(dim, x, v, mass, vol0, F, mat, mtypes, mparams, mstate, gravit
 
 
 @njit
-def max_signal_speed(dim, v, F, mat, mtypes, mparams):
+def max_signal_speed(dim, v, F, mat, mtypes, mparams, mtag):
     """max_p (c_p + |v_p|), the speed in the CFL condition dt = CFL h / max(c + |v|).
-    `F`: F (n, 3, 3) or J (n,) (`ParticleSet.deformation`)."""
+    `F`: F (n, 3, 3) or J (n,) (`ParticleSet.deformation`); `mtag` as in `particle_sums`."""
     best = 0.0
     for p in range(v.shape[0]):
         J = jacobian(F, p)
@@ -54,7 +54,7 @@ def max_signal_speed(dim, v, F, mat, mtypes, mparams):
         for a in range(dim):
             speed += v[p, a] * v[p, a]
         mi = mat[p]
-        c = wave_speed(mtypes[mi], mparams[mi], J) + np.sqrt(speed)
+        c = wave_speed_tagged(mtag, mtypes[mi], mparams[mi], J) + np.sqrt(speed)
         if not (c <= best):  # NaN propagates so a broken state is never given a finite dt
             best = c
     return best

@@ -49,6 +49,8 @@ def poisson(name, value):
 def finite_numbers(obj):
     for f in fields(obj):
         v = getattr(obj, f.name)
+        if v is None and f.default is None:  # an optional value not given
+            continue
         if not isinstance(v, numbers.Real) or isinstance(v, bool):
             raise ConfigError(f.name, f"expected a number, got {v!r}")
         if not is_finite(v):

@@ -15,11 +15,6 @@ import numpy as np
 
 from ..jit import njit
 
-#: Jacobi sweeps at most in `sym_eigen` (cyclic Jacobi converges quadratically: 3-5 in
-#: practice)
-_SWEEPS = 12
-
-
 @njit(inline="always")
 def det3(A):
     """Determinant of a general 3x3 array."""
@@ -223,55 +218,145 @@ def max_keep_nan(a, b):
 @njit(inline="always")
 def _rotation(app, aqq, apq):
     """(c, s, a_pp', a_qq') of the Jacobi rotation that zeroes a_pq (Numerical Recipes,
-    section 11.1, eqs. 11.1.8-11.1.14)."""
+    section 11.1, eqs. 11.1.8-11.1.14): the closed-form eigen-pairs of the symmetric 2x2
+    [[app, apq], [apq, aqq]], eigenvalue a_pp' with vector (c, -s), a_qq' with (s, c)."""
     if apq == 0.0:
         return 1.0, 0.0, app, aqq
     theta = (aqq - app) / (2.0 * apq)
-    t = 1.0 / (abs(theta) + math.sqrt(theta * theta + 1.0))
-    if theta < 0.0:
-        t = -t
+    t = math.copysign(1.0 / (abs(theta) + math.sqrt(theta * theta + 1.0)), theta)
     c = 1.0 / math.sqrt(t * t + 1.0)
     return c, t * c, app - t * apq, aqq + t * apq
 
 
-@njit(inline="always")
-def _turn(c, s, a, b):
-    """(c a - s b, s a + c b): one Jacobi rotation of a pair of entries."""
-    return c * a - s * b, s * a + c * b
+#: added to the half-gap R of a plane x-y block before 1/R (`hencky_trial`)
+_R0 = 1e-300
+
+#: g(h) = 2 cos(acos(h) / 3) on [0, 1] ~ _G0 + _G1 h + _G2 h^2 (through h = 0, 1/2, 1)
+_G0 = math.sqrt(3.0)
+_G2 = 2.0 * (2.0 - 4.0 * math.cos(math.pi / 9.0) + _G0)
+_G1 = 2.0 - _G0 - _G2
 
 
 @njit(inline="always")
+def _cross(a0, a1, a2, b0, b1, b2):
+    """a x b."""
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+@njit(inline="always")
+def _longer(x0, x1, x2, n, y0, y1, y2):
+    """(y, |y|^2) if |y|^2 > n = |x|^2, else (x, n), by arithmetic, not a branch (exact:
+    one of the two products is 0)."""
+    ny = y0 * y0 + y1 * y1 + y2 * y2
+    big = 0.5 + math.copysign(0.5, ny - n)
+    small = 1.0 - big
+    return (big * y0 + small * x0, big * y1 + small * x1, big * y2 + small * x2,
+            big * ny + small * n)
+
+
+@njit
 def sym_eigen(xx, yy, zz, xy, yz, xz):
     """Eigenvalues (w0, w1, w2) and eigenvectors (the columns of V, row-major 9-tuple) of a
-    symmetric 3x3 matrix by cyclic Jacobi rotations, to round-off."""
-    a00, a11, a22, a01, a12, a02 = xx, yy, zz, xy, yz, xz
-    v00, v01, v02, v10, v11, v12, v20, v21, v22 = 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
-    for _ in range(_SWEEPS):
-        off = a01 * a01 + a02 * a02 + a12 * a12
-        if not off > 1e-36 * (a00 * a00 + a11 * a11 + a22 * a22):
-            break
-        # (p, q) = (0, 1), r = 2
-        c, s, a00, a11 = _rotation(a00, a11, a01)
-        a01 = 0.0
-        a02, a12 = _turn(c, s, a02, a12)
-        v00, v01 = _turn(c, s, v00, v01)
-        v10, v11 = _turn(c, s, v10, v11)
-        v20, v21 = _turn(c, s, v20, v21)
-        # (0, 2), r = 1
-        c, s, a00, a22 = _rotation(a00, a22, a02)
-        a02 = 0.0
-        a01, a12 = _turn(c, s, a01, a12)
-        v00, v02 = _turn(c, s, v00, v02)
-        v10, v12 = _turn(c, s, v10, v12)
-        v20, v22 = _turn(c, s, v20, v22)
-        # (1, 2), r = 0
-        c, s, a11, a22 = _rotation(a11, a22, a12)
-        a12 = 0.0
-        a01, a02 = _turn(c, s, a01, a02)
-        v01, v02 = _turn(c, s, v01, v02)
-        v11, v12 = _turn(c, s, v11, v12)
-        v21, v22 = _turn(c, s, v21, v22)
-    return (a00, a11, a22), (v00, v01, v02, v10, v11, v12, v20, v21, v22)
+    symmetric 3x3 matrix in closed form, to round-off (no ordering).
+
+    Block-diagonal (yz = xz = 0: plane strain in x-y, and every diagonal matrix): the 2x2
+    block by one Jacobi rotation, which diagonalises a 2x2 exactly (Numerical Recipes,
+    section 11.1, eqs. 11.1.8-11.1.14: the stable tangent t = sgn(theta) / (|theta| +
+    sqrt(theta^2 + 1)); the eigenvalues a_pp - t a_pq, a_qq + t a_pq without cancellation);
+    zz is the third eigenvalue, e_z its vector. A multiple of the identity keeps the
+    identity frame exactly.
+
+    Otherwise (Smith 1961, "Eigenvalues of a symmetric 3x3 matrix", CACM 4(4) 168; the
+    order of the steps after Eberly 2014, "A robust eigensolver for 3x3 symmetric
+    matrices", Geometric Tools): with m = tr A / 3, p = sqrt(tr (A - m 1)^2 / 6) and
+    C = (A - m 1) / p (tr C = 0, tr C^2 = 6), the eigenvalues of C are the roots of
+    beta^3 - 3 beta - 2 h = 0, h = det C / 2 in [-1, 1], i.e. 2 cos(phi + 2 pi k / 3),
+    phi = acos(h) / 3. Only the eigenvalue farthest from the other two is taken from
+    this (the largest if h >= 0, else the smallest; solved by Newton's method, see
+    below): its error is round-off for every h, while the two others lose half the
+    digits when they nearly coincide (d acos / dh is unbounded at h = +-1). Its
+    eigenvector is the largest cross product of two rows of C - beta 1 (their rank is 2:
+    the gap from beta to the nearer other eigenvalue is 2 sqrt 3 sin(phi + 2 pi / 3) >=
+    sqrt 3 for the one chosen, so the vector is accurate to round-off), and the
+    other two pairs come from the 2x2 matrix of C on the plane orthogonal to it, by the
+    Jacobi rotation above: accurate even for a double eigenvalue, where the 2x2 is a
+    multiple of the identity and any orthonormal pair in that plane is an answer.
+
+    A plain call, not inlined at Numba's IR level: its size, inlined into every model of
+    the kernels that switch over all of them at run time (SPH's stress, MPM's F-bar), made
+    their compilation exceed ten minutes (scalars in, a tuple out: no reference counting).
+
+    Jacobi sweeps (the former method here) cost 2-3x as much in 3D (4-5 sweeps of three
+    rotations, each with two square roots and two divisions in a dependent chain)."""
+    if yz == 0.0 and xz == 0.0:
+        c, s, w0, w1 = _rotation(xx, yy, xy)
+        return (w0, w1, zz), (c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0)
+    m = (xx + yy + zz) * (1.0 / 3.0)
+    b00 = xx - m
+    b11 = yy - m
+    b22 = zz - m
+    p2 = (b00 * b00 + b11 * b11 + b22 * b22
+          + 2.0 * (xy * xy + yz * yz + xz * xz)) * (1.0 / 6.0)
+    if not p2 > 0.0:  # off-diagonals below 1e-154 (their squares underflow), or NaN
+        return (xx, yy, zz), (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+    p = math.sqrt(p2)
+    r = 1.0 / p
+    c00 = b00 * r
+    c11 = b11 * r
+    c22 = b22 * r
+    c01 = xy * r
+    c12 = yz * r
+    c02 = xz * r
+    h = 0.5 * (c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02)
+               + c02 * (c01 * c12 - c11 * c02))
+    # the separated root beta of beta^3 - 3 beta - 2 h = 0 (the characteristic polynomial
+    # of C): +-g(|h|), g the largest root for |h|, by three Newton steps from a quadratic
+    # fit of g = 2 cos(acos(|h|) / 3) (error 1.0e-3, then 8.6e-7, 6e-13, round-off: the
+    # derivative 3 (g^2 - 1) >= 6 on [sqrt 3, 2]); acos and cos cost 5x as much
+    ha = abs(h)
+    beta = _G0 + ha * (_G1 + ha * _G2)
+    for _ in range(3):
+        b2 = beta * beta
+        beta -= (beta * (b2 - 3.0) - 2.0 * ha) / (3.0 * (b2 - 1.0))
+    beta = math.copysign(beta, h)  # h >= 0: the largest eigenvalue, else the smallest
+    # eigenvector: the longest cross product of two rows of C - beta 1
+    d00 = c00 - beta
+    d11 = c11 - beta
+    d22 = c22 - beta
+    # (selected without a branch: a mispredicted branch here, behind the dependent chain of
+    # divisions above, cost more than all the arithmetic of this function)
+    x0, x1, x2 = _cross(d00, c01, c02, c01, d11, c12)
+    n = x0 * x0 + x1 * x1 + x2 * x2
+    y0, y1, y2 = _cross(d00, c01, c02, c02, c12, d22)
+    x0, x1, x2, n = _longer(x0, x1, x2, n, y0, y1, y2)
+    y0, y1, y2 = _cross(c01, d11, c12, c02, c12, d22)
+    x0, x1, x2, n = _longer(x0, x1, x2, n, y0, y1, y2)
+    k = 1.0 / math.sqrt(n)
+    v0 = x0 * k
+    v1 = x1 * k
+    v2 = x2 * k
+    # an orthonormal pair (u, w) orthogonal to the unit v, without a branch (Duff et al.
+    # 2017, "Building an orthonormal basis, revisited", JCGT 6(1), listing 3)
+    sg = math.copysign(1.0, v2)
+    a = -1.0 / (sg + v2)
+    b = v0 * v1 * a
+    u0, u1, u2 = 1.0 + sg * v0 * v0 * a, sg * b, -sg * v0
+    t0, t1, t2 = b, sg + v1 * v1 * a, -v1
+    # C u and C w, then the 2x2 [[u.Cu, u.Cw], [u.Cw, w.Cw]]
+    cu0 = c00 * u0 + c01 * u1 + c02 * u2
+    cu1 = c01 * u0 + c11 * u1 + c12 * u2
+    cu2 = c02 * u0 + c12 * u1 + c22 * u2
+    cw0 = c00 * t0 + c01 * t1 + c02 * t2
+    cw1 = c01 * t0 + c11 * t1 + c12 * t2
+    cw2 = c02 * t0 + c12 * t1 + c22 * t2
+    c, s, mu1, mu2 = _rotation(u0 * cu0 + u1 * cu1 + u2 * cu2,
+                               t0 * cw0 + t1 * cw1 + t2 * cw2,
+                               u0 * cw0 + u1 * cw1 + u2 * cw2)
+    # the rotated pair (columns c u - s w and s u + c w, as the 2x2 case above)
+    return ((m + p * beta, m + p * mu1, m + p * mu2),
+            (v0, c * u0 - s * t0, s * u0 + c * t0,
+             v1, c * u1 - s * t1, s * u1 + c * t1,
+             v2, c * u2 - s * t2, s * u2 + c * t2))
 
 
 @njit(inline="always")
@@ -304,13 +389,52 @@ def hencky_trial(F, state):
     deformation f = F Fn^-1 since it was stored (Fn, state[8:17] row-major): the trial
     be_t = f be f^T (Simo 1992, eq. 4.4). Returns the principal logarithmic strains
     e_i = ln(lambda_i)/2 of be_t, their directions V (row-major 9-tuple, eigenvectors as
-    columns) and be_t itself.
+    columns), be_t itself and whether the step is plane (below).
 
     Why the relative form, not be = F Cp^-1 F^T from the plastic Cp^-1: after long shear F
     and Cp^-1 grow without bound while be stays near the identity, and the product loses
     every digit (a sheared Drucker-Prager block reached entries of 1e3 in F, 1e6 in Cp^-1,
     and NaN); f is near the identity every step and Fn^-1 is formed once, from a matrix of
-    determinant J."""
+    determinant J.
+
+    Plane (F, Fn and be without xz, yz coupling: every particle of a 2D run, tested entry
+    by entry, so a 3D particle that happens to be plane takes it too): the same formulas
+    on the x-y blocks, f_zz = F_zz / Fn_zz, and the eigenvalues of the x-y block
+    mean +- R in closed form; V then holds (cos 2 phi, sin 2 phi) of the first direction
+    in V[0], V[1] (what `store_return` reads when `plane`), not the vectors. A third of
+    the arithmetic of the 3D path."""
+    if (F[0, 2] == 0.0 and F[1, 2] == 0.0 and F[2, 0] == 0.0 and F[2, 1] == 0.0
+            and state[4] == 0.0 and state[5] == 0.0 and state[10] == 0.0
+            and state[13] == 0.0 and state[14] == 0.0 and state[15] == 0.0):
+        n00, n01, n10, n11, n22 = state[8], state[9], state[11], state[12], state[16]
+        d = n00 * n11 - n01 * n10
+        r = 1.0 / (d * n22)  # one division for 1/d and 1/n22
+        rd = r * n22
+        f00 = rd * (F[0, 0] * n11 - F[0, 1] * n10)
+        f01 = rd * (F[0, 1] * n00 - F[0, 0] * n01)
+        f10 = rd * (F[1, 0] * n11 - F[1, 1] * n10)
+        f11 = rd * (F[1, 1] * n00 - F[1, 0] * n01)
+        f22 = F[2, 2] * (r * d)
+        bxx, byy, bxy = state[0], state[1], state[3]
+        g00 = f00 * bxx + f01 * bxy
+        g01 = f00 * bxy + f01 * byy
+        g10 = f10 * bxx + f11 * bxy
+        g11 = f10 * bxy + f11 * byy
+        xx = g00 * f00 + g01 * f01
+        yy = g10 * f10 + g11 * f11
+        xy = g00 * f10 + g01 * f11
+        zz = f22 * f22 * state[2]
+        # eigen-pairs of the x-y block in the double angle 2 phi of its first direction
+        # (cos phi, sin phi): block = mean 1 + R [[cos 2phi, sin 2phi], [sin 2phi,
+        # -cos 2phi]]; one square root and one division (the tiny R0 keeps 0/0 out at
+        # R = 0, where the two strains are equal and the angle is not used)
+        h = 0.5 * (xx - yy)
+        R = math.sqrt(h * h + xy * xy)
+        mean = 0.5 * (xx + yy)
+        rR = 1.0 / (R + _R0)
+        return ((0.5 * math.log(mean + R), 0.5 * math.log(mean - R), 0.5 * math.log(zz)),
+                (h * rR, xy * rR, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0),
+                (xx, yy, zz, xy, 0.0, 0.0), True)
     n00, n01, n02 = state[8], state[9], state[10]
     n10, n11, n12 = state[11], state[12], state[13]
     n20, n21, n22 = state[14], state[15], state[16]
@@ -335,14 +459,7 @@ def hencky_trial(F, state):
          r * (F[2, 0] * c20 + F[2, 1] * c21 + F[2, 2] * c22))
     be = congruence(f, (state[0], state[1], state[2], state[3], state[4], state[5]))
     w, V = sym_eigen(be[0], be[1], be[2], be[3], be[4], be[5])
-    return (0.5 * math.log(w[0]), 0.5 * math.log(w[1]), 0.5 * math.log(w[2])), V, be
-
-
-@njit(inline="always")
-def store_principal(sigma, V, t0, t1, t2, scale):
-    """sigma = scale V diag(t0, t1, t2) V^T (V a row-major 9-tuple of eigenvector columns)."""
-    s = congruence(V, (scale * t0, scale * t1, scale * t2, 0.0, 0.0, 0.0))
-    store_sym(sigma, s[0], s[1], s[2], s[3], s[4], s[5])
+    return (0.5 * math.log(w[0]), 0.5 * math.log(w[1]), 0.5 * math.log(w[2])), V, be, False
 
 
 @njit(inline="always")
@@ -354,20 +471,55 @@ def hencky_split(e):
 
 
 @njit(inline="always")
-def store_return(F, V, be, p, G, m, d0, d1, d2, plastic, state, sigma):
+def _principal_plane(c2, s2, t0, t1, t2):
+    """sum t_i n_i n_i^T with n_0 = (cos phi, sin phi, 0), n_1 = (-sin phi, cos phi, 0),
+    n_2 = e_z, from (c2, s2) = (cos 2 phi, sin 2 phi) (the plane case of `hencky_trial`),
+    as (xx, yy, zz, xy, yz, xz)."""
+    mean = 0.5 * (t0 + t1)
+    half = 0.5 * (t0 - t1)
+    return mean + half * c2, mean - half * c2, t2, half * s2, 0.0, 0.0
+
+
+@njit(inline="always")
+def store_return(F, V, be, plane, p, G, m, d0, d1, d2, plastic, state, sigma):
     """The end of a return of the plasticity models: sigma = tau / J with the Kirchhoff stress
     tau = p 1 + 2 G dev e (principal deviatoric strains d_i in the directions V), and the
     state the next call starts from: be (the trial `be` after an elastic step; after plastic
     flow V diag(exp(2 (m + d_i))) V^T, the returned elastic strains), Fn = F, and
-    state[7] = 1 after plastic flow, else 0 (the `yielding` output field)."""
-    store_principal(sigma, V, p + 2.0 * G * d0, p + 2.0 * G * d1, p + 2.0 * G * d2,
-                    1.0 / det3(F))
-    if plastic:
-        be = congruence(V, (math.exp(2.0 * (m + d0)), math.exp(2.0 * (m + d1)),
-                            math.exp(2.0 * (m + d2)), 0.0, 0.0, 0.0))
-    for i in range(6):
-        state[i] = be[i]
-    for a in range(3):
-        for b in range(3):
-            state[8 + 3 * a + b] = F[a, b]
+    state[7] = 1 after plastic flow, else 0 (the `yielding` output field). `plane`: V and
+    F as in the plane case of `hencky_trial` (V the double angle; zeros not multiplied
+    out)."""
+    t0 = p + 2.0 * G * d0
+    t1 = p + 2.0 * G * d1
+    t2 = p + 2.0 * G * d2
+    if plane:
+        rJ = 1.0 / ((F[0, 0] * F[1, 1] - F[0, 1] * F[1, 0]) * F[2, 2])
+        sg = _principal_plane(V[0], V[1], rJ * t0, rJ * t1, rJ * t2)
+        if plastic:
+            be = _principal_plane(V[0], V[1], math.exp(2.0 * (m + d0)),
+                                  math.exp(2.0 * (m + d1)), math.exp(2.0 * (m + d2)))
+    else:
+        rJ = 1.0 / det3(F)
+        sg = congruence(V, (rJ * t0, rJ * t1, rJ * t2, 0.0, 0.0, 0.0))
+        if plastic:
+            be = congruence(V, (math.exp(2.0 * (m + d0)), math.exp(2.0 * (m + d1)),
+                                math.exp(2.0 * (m + d2)), 0.0, 0.0, 0.0))
+    store_sym(sigma, sg[0], sg[1], sg[2], sg[3], sg[4], sg[5])
+    # written out: a tuple indexed by a loop variable compiles to a switch per entry (this
+    # store cost as much as the rest of the return)
+    state[0] = be[0]
+    state[1] = be[1]
+    state[2] = be[2]
+    state[3] = be[3]
+    state[4] = be[4]
+    state[5] = be[5]
     state[7] = 1.0 if plastic else 0.0
+    state[8] = F[0, 0]
+    state[9] = F[0, 1]
+    state[10] = F[0, 2]
+    state[11] = F[1, 0]
+    state[12] = F[1, 1]
+    state[13] = F[1, 2]
+    state[14] = F[2, 0]
+    state[15] = F[2, 1]
+    state[16] = F[2, 2]

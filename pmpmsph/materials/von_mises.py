@@ -56,7 +56,7 @@ def stress_von_mises(F, L, dt, state, par, sigma):
     K = par[1]
     yield0 = par[3]
     H = par[4]
-    e, V, be = hencky_trial(F, state)
+    e, V, be, plane = hencky_trial(F, state)
     ev, m, d0, d1, d2 = hencky_split(e)
     q = math.sqrt(6.0) * G * math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # sqrt(3/2) |2 G dev e|
     alpha = state[6]
@@ -68,7 +68,7 @@ def stress_von_mises(F, L, dt, state, par, sigma):
         d1 *= scale
         d2 *= scale
         state[6] = alpha + dgamma
-    store_return(F, V, be, K * ev, G, m, d0, d1, d2, excess > 0.0, state, sigma)
+    store_return(F, V, be, plane, K * ev, G, m, d0, d1, d2, excess > 0.0, state, sigma)
 
 
 @njit(fastmath=False)
@@ -78,7 +78,7 @@ def energy_von_mises(F, state, par):
     G = par[0]
     K = par[1]
     H = par[4]
-    e, _, _ = hencky_trial(F, state)
+    e, _, _, _ = hencky_trial(F, state)
     ev, _, d0, d1, d2 = hencky_split(e)
     dev2 = d0 * d0 + d1 * d1 + d2 * d2
     return 0.5 * K * ev * ev + G * dev2 + 0.5 * H * state[6] * state[6]

@@ -14,6 +14,15 @@ def stored_F(state):
     return state[8:17].reshape(3, 3)
 
 
+def random_rotation(rng):
+    """A proper rotation drawn from `rng` (QR of a Gaussian matrix, signs fixed)."""
+    q, r = np.linalg.qr(rng.standard_normal((3, 3)))
+    Q = q * np.sign(np.diag(r))
+    if np.linalg.det(Q) < 0:
+        Q[:, 0] *= -1
+    return Q
+
+
 def assert_rotated(s2, s1, Q, tol=1e-12):
     """s2 is s1 under a superposed rotation Q: be -> Q be Q^T, Fn -> Q Fn, alpha and the
     flag unchanged."""

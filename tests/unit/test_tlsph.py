@@ -10,6 +10,7 @@ from pmpmsph.kernels.sph.tlsph import (current_volume, deformation_gradient, ene
                                    first_piola, internal_force, kernel_correction,
                                    material_stress, update_F_exp, velocity_gradient)
 from pmpmsph.materials import material_from_table
+from pmpmsph.materials.dispatch import material_tag
 
 CUBIC, WENDLAND_C2 = kernel_code("cubic"), kernel_code("wendland")
 
@@ -357,7 +358,8 @@ def test_energies_and_material_stress():
     vol0 = np.array([0.5, 1.0, 2.0])
     mass = 3.0 * vol0
     v = np.array([[1.0, 0.0], [0.0, 2.0], [0.0, 0.0]])
-    K, U = energies(mass, v, vol0, F, mat.type_code, state, par, 2)
+    K, U = energies(mass, v, vol0, F, mat.type_code, state, par, 2,
+                    material_tag((mat.type_code,)))
     assert K == pytest.approx(0.5 * (1.5 * 1 + 3.0 * 4))
 
     def psi(F):
@@ -366,7 +368,8 @@ def test_energies_and_material_stress():
         return 0.625 * (np.trace(Bb) - 3) + 5.833 / 50 * (J ** 5 + J ** -5 - 2)
     assert U == pytest.approx(sum(vol0[a] * psi(F[a]) for a in range(N)), rel=1e-12)
     sigma = np.empty((N, 3, 3))
-    material_stress(mat.type_code, F, np.zeros_like(F), 0.0, state, par, sigma)
+    material_stress(mat.type_code, F, np.zeros_like(F), 0.0, state, par, sigma,
+                    material_tag((mat.type_code,)))
     assert np.abs(sigma[0]).max() == 0.0
     J = np.linalg.det(F[1])
     Bb = J ** (-2 / 3) * F[1] @ F[1].T

@@ -13,7 +13,7 @@ from pmpmsph.materials import MODELS, material_from_table
 from pmpmsph.materials.dispatch import compute_stress, strain_energy, wave_speed
 from pmpmsph.materials.tensor import sym_eigen
 from pmpmsph.materials.von_mises import VonMises
-from plastic_state import assert_rotated, elastic_b
+from plastic_state import assert_rotated, elastic_b, random_rotation
 
 MAT = VonMises(E=200e9, nu=0.3, rho=7800.0, yield_stress=250e6, hardening=2e9)
 G, K = MAT.mu, MAT.bulk
@@ -33,14 +33,6 @@ def energy(F, state, mat=MAT):
 def mises(tau):
     dev = tau - np.trace(tau) / 3.0 * np.eye(3)
     return math.sqrt(1.5 * np.sum(dev * dev))
-
-
-def random_rotation(rng):
-    q, r = np.linalg.qr(rng.standard_normal((3, 3)))
-    Q = q * np.sign(np.diag(r))
-    if np.linalg.det(Q) < 0:
-        Q[:, 0] *= -1
-    return Q
 
 
 def random_path(rng, steps, amp):

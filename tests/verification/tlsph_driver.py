@@ -36,6 +36,7 @@ from pmpmsph.kernels.sph.tlsph import (current_volume, deformation_gradient, ene
                                    first_piola, internal_force, kernel_correction,
                                    material_stress, update_F_exp, velocity_gradient)
 from pmpmsph.materials import material_from_table
+from pmpmsph.materials.dispatch import material_tag
 
 CUBIC = kernel_code("cubic")
 
@@ -85,6 +86,7 @@ class Plate:
         self.force = force
         self.mat = plate_material(eta)
         self.mtype = self.mat.type_code
+        self.mtag = material_tag((self.mtype,))
         self.par = self.mat.params(2)
         self.maxwell = eta is not None
         self.X0, self.vol0, self.s, self.corner = plate_particles(n, layout)
@@ -135,7 +137,8 @@ class Plate:
                                                    self.kind, 2, self.corrected, wt, gw)
             velocity_gradient(self.rows, start, index, gw, self.vol, v, 2, self.L)
         trial = self.state.copy()
-        material_stress(self.mtype, F, self.L, stage_dt, trial, self.par, self.sigma)
+        material_stress(self.mtype, F, self.L, stage_dt, trial, self.par, self.sigma,
+                        self.mtag)
         if self.force == "current":
             internal_force(start, index, gw, self.vol, self.sigma, 2, self.f)
         else:  # total-Lagrangian form: first Piola-Kirchhoff P = J sigma F^-T, reference pairs
@@ -181,13 +184,13 @@ class Plate:
         self.F = F_at(self.x, (1.0 / 6.0, L0), (1.0 / 6.0, L1), (2.0 / 3.0, L2))
         if self.maxwell:  # commit eq. 16 over the full step with the final F
             material_stress(self.mtype, self.F, np.zeros_like(self.F), dt, self.state,
-                            self.par, self.sigma)
+                            self.par, self.sigma, self.mtag)
         self.t += dt
 
     def energy(self):
         """(K, U) of eq. 7 at the current state."""
         return energies(self.mass, self.v, self.vol0, self.F, self.mtype, self.state,
-                        self.par, 2)
+                        self.par, 2, self.mtag)
 
     def run(self, T):
         """Advance to T; returns a history dict (t, K, U, E, corner displacement u[:, 2])."""

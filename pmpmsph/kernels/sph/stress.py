@@ -10,14 +10,16 @@ import numpy as np
 
 from ...jit import njit
 from ...codes import SPH, WALL
-from ...materials.dispatch import compute_stress, wave_speed
+from ...materials.dispatch import compute_stress_tagged, wave_speed_tagged
 from ...materials.fluid import TAIT_FLUID, stress_tait_of_jm1
 from ...materials.tensor import det3
 
 
 @njit
-def sound_speeds(dim, n, method, mat, rho, F, mtypes, mparams, cs):
-    """Current wave speed of rows [0, n) (for the artificial viscosity)."""
+def sound_speeds(dim, n, method, mat, rho, F, materials, cs):
+    """Current wave speed of rows [0, n) (for the artificial viscosity); `materials` =
+    (types, parameters, `material_tag` of the types present)."""
+    mtypes, mparams, mtag = materials
     for a in range(n):
         mi = mat[a]
         if mtypes[mi] == TAIT_FLUID:
@@ -29,7 +31,7 @@ def sound_speeds(dim, n, method, mat, rho, F, mtypes, mparams, cs):
             J = mparams[mi, 2] / rho[a]
         else:
             J = det3(F[a])
-        cs[a] = wave_speed(mtypes[mi], mparams[mi], J) if J > 0 else 0.0
+        cs[a] = wave_speed_tagged(mtag, mtypes[mi], mparams[mi], J) if J > 0 else 0.0
 
 
 @njit
@@ -63,10 +65,11 @@ def sph_stress(n, method, mat, rho, F, L, dt, states, materials, sigma, vol, mas
     its integrated F. A fluid whose viscosity acts pairwise (morris_mu[mat] > 0, see
     `sph_rates`; `morris_mu` may be empty) keeps the pressure alone. The material state
     restarts from `mstate_in` (the state at the step start) so that multi-stage integrators
-    commit it once: `states` = (mstate_in, mstate), `materials` = (types, parameters).
+    commit it once: `states` = (mstate_in, mstate), `materials` = (types, parameters,
+    `material_tag` of the types present: the stress switch covers those only).
     Returns the first row with a NaN or non-positive J, or -1."""
     mstate_in, mstate = states
-    mtypes, mparams = materials
+    mtypes, mparams, mtag = materials
     bad = -1
     La = np.zeros((3, 3))
     for a in range(n):
@@ -99,7 +102,8 @@ def sph_stress(n, method, mat, rho, F, L, dt, states, materials, sigma, vol, mas
             for i in range(3):
                 for j in range(3):
                     La[i, j] = 0.0 if pairwise else L[a, i, j]
-            compute_stress(mtypes[mi], Fa, La, dt, mstate[a], mparams[mi], sigma[a])
+            compute_stress_tagged(mtag, mtypes[mi], Fa, La, dt, mstate[a], mparams[mi],
+                                  sigma[a])
         if mtypes[mi] == TAIT_FLUID:
             # a fluid under tension (a splash, the wake of a body) clumps: its pair forces
             # attract (the tensile instability of SPH); `p_min` (e.g. 0) floors the pressure
@@ -114,14 +118,16 @@ def sph_stress(n, method, mat, rho, F, L, dt, states, materials, sigma, vol, mas
 
 
 @njit
-def sph_stress_all(rows, mat, F, L, dt, mstate, mtypes, mparams, sigma):
+def sph_stress_all(rows, mat, F, L, dt, mstate, materials, sigma):
     """Stress of the `rows` from their F (total-Lagrangian SPH: owned and halo rows alike,
     each with its material state restarted by the caller; the rows of other materials are
-    not written)."""
+    not written); `materials` as in `sph_stress`."""
+    mtypes, mparams, mtag = materials
     La = np.zeros((3, 3))
     for a in rows:
         mi = mat[a]
         for i in range(3):
             for j in range(3):
                 La[i, j] = L[a, i, j]
-        compute_stress(mtypes[mi], F[a], La, dt, mstate[a], mparams[mi], sigma[a])
+        compute_stress_tagged(mtag, mtypes[mi], F[a], La, dt, mstate[a], mparams[mi],
+                              sigma[a])

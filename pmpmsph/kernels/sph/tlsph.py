@@ -81,7 +81,7 @@ reference volume).
 import numpy as np
 
 from ...jit import njit
-from ...materials.dispatch import compute_stress, strain_energy
+from ...materials.dispatch import compute_stress_tagged, strain_energy_tagged
 from ...materials.tensor import cofactor3, det3
 from .kernel_functions import kernel_dwdr, kernel_w
 from .liu import COEF, liu_gradient, liu_solve
@@ -336,11 +336,12 @@ def update_F_exp(L, F, dt, Fout):
 
 
 @njit
-def material_stress(mtype, F, L, dt, state, par, sigma):
+def material_stress(mtype, F, L, dt, state, par, sigma, mtag):
     """Cauchy stress of every particle (eqs. 11 / 14-17 via the material dispatch); a
-    Maxwell state is advanced by eq. 16 over dt in place (pass a copy for trial stages)."""
+    Maxwell state is advanced by eq. 16 over dt in place (pass a copy for trial stages).
+    `mtag`: `material_tag((mtype,))`, so that only this model's law is compiled."""
     for a in range(F.shape[0]):
-        compute_stress(mtype, F[a], L[a], dt, state[a], par, sigma[a])
+        compute_stress_tagged(mtag, mtype, F[a], L[a], dt, state[a], par, sigma[a])
 
 
 @njit
@@ -351,9 +352,9 @@ def current_volume(F, vol0, vol):
 
 
 @njit
-def energies(mass, v, vol0, F, mtype, state, par, dim):
+def energies(mass, v, vol0, F, mtype, state, par, dim, mtag):
     """Eq. 7: ``K = 1/2 sum m_b |v_b|^2`` and ``U = sum V0_b psi(F_b)`` (psi per unit
-    reference volume, eq. 12); returns (K, U)."""
+    reference volume, eq. 12); returns (K, U). `mtag` as in `material_stress`."""
     K = 0.0
     U = 0.0
     for b in range(mass.shape[0]):
@@ -361,5 +362,5 @@ def energies(mass, v, vol0, F, mtype, state, par, dim):
         for i in range(dim):
             s += v[b, i] * v[b, i]
         K += 0.5 * mass[b] * s
-        U += vol0[b] * strain_energy(mtype, F[b], state[b], par)
+        U += vol0[b] * strain_energy_tagged(mtag, mtype, F[b], state[b], par)
     return K, U

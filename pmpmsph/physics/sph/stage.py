@@ -43,6 +43,7 @@ from ...kernels.sph.integrate import (
 )
 from ...kernels.sph.kernel_functions import SUPPORT, kernel_w
 from ...kernels.sph.walls import mirror_pressure, wall_state
+from ...materials.dispatch import material_tag
 from ...parallel.decomposition import wrap_axis
 from ...parallel.particle_halo import ParticleHalo
 from ...particles import FieldSpec
@@ -117,6 +118,12 @@ class SPHStage:
                               for m, pw in zip(mats, pairwise))
         self.integrator = SPH_INTEGRATORS[spec.integrator]  # (sph_integrators.py)
         self.mtypes, self.mparams = materials
+        # the set of material models this stage's kernels meet, a compile-time tag: their
+        # stress and wave-speed switches cover those only (materials/dispatch.py); from the
+        # case's bodies (not this rank's rows, which migrate), every body's since SPH rows
+        # pair with MPM points and region coupling turns one method into the other
+        used = sorted({list(case.materials).index(b.material) for b in case.bodies})
+        self.tagged_materials = (self.mtypes, self.mparams, material_tag(self.mtypes[used]))
         self.gravity = np.zeros(3)
         self.gravity[: self.dim] = case.gravity
         self.timers = timers if timers is not None else Timers()
@@ -254,7 +261,7 @@ class SPHStage:
         with t.phase("sph"):
             if self.split:  # Fourtakas' splitting reads the current sound speeds
                 sound_speeds(self.dim, p.n_total, p.with_halo("method"), p.with_halo("mat"),
-                             p.with_halo("rho"), p.with_halo("F"), self.mtypes, self.mparams,
+                             p.with_halo("rho"), p.with_halo("F"), self.tagged_materials,
                              p.with_halo("cs"))
             # drho and L only, without the artificial stress
             sph_rates(self._smoothing(), self._pairs(n), self._pair_rows(),
@@ -500,7 +507,7 @@ class SPHStage:
         with t.phase("sph"):
             rho, sigma = p.with_halo("rho"), p.with_halo("sigma")
             sound_speeds(self.dim, nt, p.with_halo("method"), p.with_halo("mat"), rho,
-                         p.with_halo("F"), self.mtypes, self.mparams, p.with_halo("cs"))
+                         p.with_halo("F"), self.tagged_materials, p.with_halo("cs"))
             pair_stress(self.dim_tag, nt, sigma, rho, p.with_halo("S"))
             R = p.with_halo("R") if self.use_as else np.zeros((0, 6))
             if self.use_as:
@@ -539,7 +546,7 @@ class SPHStage:
         n = p.n_owned
         with self.timers.phase("sph"):
             return sph_stress(n, p["method"], p["mat"], p["rho"], p["F"], p["L"], dt,
-                              (mstate_in, self._mstate(n)), (self.mtypes, self.mparams),
+                              (mstate_in, self._mstate(n)), self.tagged_materials,
                               p["sigma"], p["vol"], p["mass"], self.spec.pressure_min,
                               np.zeros(0) if self.morris_mu is None else self.morris_mu)
 

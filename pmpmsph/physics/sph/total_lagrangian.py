@@ -204,7 +204,7 @@ class TLSPHStage(SPHStage):
                 else:
                     mstate[rows] = m0[rows]
             sph_stress_all(rows, p.with_halo("mat"), F, p.with_halo("L"), dt_state, mstate,
-                           self.mtypes, self.mparams, p.with_halo("sigma"))
+                           self.tagged_materials, p.with_halo("sigma"))
             f = p.with_halo("force")
             held = self._mirror.held_rows() if self._mirror is not None else None
             if self.current_force:
@@ -249,8 +249,8 @@ class TLSPHStage(SPHStage):
         cs = np.empty(nt)
         self._A = rows_at_least(self._A, n)
         with t.phase("sph"):
-            sound_speeds(self.dim, nt, method, mat, rho, p.with_halo("F"), self.mtypes,
-                         self.mparams, cs)
+            sound_speeds(self.dim, nt, method, mat, rho, p.with_halo("F"),
+                         self.tagged_materials, cs)
             control = self._control_pairs(n, *self.ref_half)
             self._fit(smoothing, pairs, control, u, X0, mass, rho, method, mat, self.fluid,
                       self._A, p.with_halo("Fh"))
