@@ -5,7 +5,7 @@ diagonal ones, to 1e-12 relative."""
 import numpy as np
 import pytest
 
-from pmpmsph.materials.tensor import sym_eigen
+from pmpmsph.materials.eigen import sym_eigen
 
 TOL = 1e-12
 

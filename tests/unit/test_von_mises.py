@@ -11,7 +11,7 @@ import pytest
 from pmpmsph.errors import ConfigError
 from pmpmsph.materials import MODELS, material_from_table
 from pmpmsph.materials.dispatch import compute_stress, strain_energy, wave_speed
-from pmpmsph.materials.tensor import sym_eigen
+from pmpmsph.materials.eigen import sym_eigen
 from pmpmsph.materials.von_mises import VonMises
 from plastic_state import assert_rotated, elastic_b, random_rotation
 
