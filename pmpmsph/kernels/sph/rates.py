@@ -21,16 +21,6 @@ from .kernel_functions import kernel_dwdr, kernel_w
 from .liu import liu_gradient
 
 
-@njit
-def normal_stress(S, a, n, w):
-    """-n_w . S_a . n_w across wall row w's unit normal n[w] (S symmetric, xx yy zz xy yz
-    xz): the compressive normal stress over rho^2 of row a that the wall carries
-    (kernels/sph/walls.py wall_state)."""
-    n0, n1, n2 = n[w, 0], n[w, 1], n[w, 2]
-    return -(S[a, 0] * n0 * n0 + S[a, 1] * n1 * n1 + S[a, 2] * n2 * n2
-             + 2.0 * (S[a, 3] * n0 * n1 + S[a, 4] * n1 * n2 + S[a, 5] * n0 * n2))
-
-
 
 @njit
 def sph_rates(smoothing, pairs, rows, options, terms, out):
@@ -97,26 +87,6 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
     the wall's density taken as the solid's: the wall holds a resting solid up by the
     solid's own weight, whatever water stands beside it (whose pressure the same wall takes
     towards the fluid). Without walls (`pws` empty) such pairs do not occur.
-    The contact of walls and SPH solids (`wn`, the walls' normals; empty: the pressure form
-    above, for scenes without SPH solids): with each wall row's outward
-    normal n (`kernels.sph.walls.wall_normals`), the pair acts along n alone,
-        dv_s/dt += -V_w (p_n,s + pws_w)/rho_s (grad_s W_sw . n) n,
-    with p_n,s = -n . sigma_s . n the solid's normal stress across the wall (and pws the
-    same, extrapolated: a wall carries normal traction, not the mean pressure, which is
-    0.43 of it in a block under its own weight, and pushed with that the block sank into
-    the floor); its artificial viscosity reads the normal approach ((v_sw . n)(x_sw . n)
-    for v_sw . x_sw); and the solid's drho and L take the wall as a layer at rest along n,
-        L_s += V_w ((v_w - v_s) . n) n (x) G_sw   (and drho likewise),
-    as the fluid's continuity takes the wall's velocity (Adami et al. 2012): a solid pressed
-    into a wall is compressed by it, so the contact is stiff, while sliding along it is free
-    of any force, the lattice's bumps included. The normal contact is bilateral, as a
-    symmetry plane is: a row in tension across the wall is held by it, up to what its
-    material carries (nothing for cohesionless Drucker-Prager, whose stresses stay
-    compressive). Clamping the push to compression while the kinematics stayed two-sided
-    let a block's free side face, touching a side wall, pull itself off the wall with
-    growing tension (the block of test_sph_walls_solids.py blew up within 0.01 s), and
-    opening the kinematics too when an unloaded row left the wall ratcheted a sliding
-    block off the floor at 2 mm/s; a release condition for lift-off is not built.
     Other material interfaces (two solids, two fluids) keep the contact pressure
     p_c = max(p_a, p_b, 0) on both ends, -p_c (1/rho_a^2 + 1/rho_b^2) I: the full sigma/rho^2
     term would let a solid in tension pull the other body's particles into it; within one
@@ -185,7 +155,7 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
     x, v, vg, mass, rho, S, cs, method, mat = rows
     (corr_tag, fluid, gravity, damping, av_alpha, av_beta, want_force, want_L, want_fsi,
      split) = options
-    R, as_n, w_dp, B, liu, dcoef, gradrho, morris_mu, pw, clamped, pws, wn = terms
+    R, as_n, w_dp, B, liu, dcoef, gradrho, morris_mu, pw, clamped, pws = terms
     acc, drho, L, fsi, fcpl = out
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
@@ -208,7 +178,6 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
     gx2 = gravity[2] if dim > 2 else 0.0
     with_pw = pw.shape[0] > 0  # (else the plain mirror: the fluid's own pressure)
     with_pws = pws.shape[0] > 0  # (dummy walls: their pressure towards solids)
-    with_wn = wn.shape[0] > 0  # (and their normals: the contact with SPH solids)
     with_clamped = clamped.shape[0] > 0  # (mirror clamps of an updated solid)
     pairwise = morris_mu.shape[0] > 0  # (Morris' viscosity)
     if want_fsi or one_sided:
@@ -308,26 +277,6 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
             # material: that fluid acts on it by pressure only (docstring)
             kin_a = upd_a and not mirror_b
             kin_b = upd_b and not mirror_a
-            # a dummy wall holding an SPH solid: the solid's kinematics see the wall as a
-            # layer at rest along the wall's normal n (docstring)
-            touch_a = with_wn and upd_a and method[b] == WALL and not fluid[mat[a]]
-            touch_b = with_wn and upd_b and method[a] == WALL and not fluid[mat[b]]
-            vn = 0.0  # the solid's normal velocity relative to the wall
-            if touch_a or touch_b:
-                sr, wr = (a, b) if touch_a else (b, a)
-                for d in range(dim):
-                    vn += (v[sr, d] - v[wr, d]) * wn[wr, d]
-                # V_w rho_s ((v_w - v_s) . n) n (x) G_sw: G_sw = B_a g (a the solid), -B_b g
-                un = -vn * mass[wr] * rho[sr] / rho[wr]
-                c0, c1, c2 = (ca0, ca1, ca2) if touch_a else (-cb0, -cb1, -cb2)
-                drho[sr] -= un * (wn[wr, 0] * c0 + wn[wr, 1] * c1 + wn[wr, 2] * c2)
-                if want_L:
-                    for i in range(dim):
-                        L[sr, i, 0] += un * wn[wr, i] * c0
-                        if dim > 1:
-                            L[sr, i, 1] += un * wn[wr, i] * c1
-                        if dim > 2:
-                            L[sr, i, 2] += un * wn[wr, i] * c2
             if kin_a:
                 if mirror_a:
                     drho[a] += 2.0 * rho[a] * mb / rho[b] * (vab0 * g0 + vab1 * g1 + vab2 * g2)
@@ -388,10 +337,6 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
             if not want_force:
                 continue
             vx = vab0 * xab0 + vab1 * xab1 + vab2 * xab2
-            if touch_a or touch_b:  # a wall damps a solid's normal approach alone
-                wr = b if touch_a else a  # (wn's components beyond dim are 0, as xab's)
-                xn = xab0 * wn[wr, 0] + xab1 * wn[wr, 1] + xab2 * wn[wr, 2]
-                vx = (-vn if touch_b else vn) * xn
             pi = 0.0
             if vx < 0.0:
                 eta = h * vx / (r2 + eps2)
@@ -440,14 +385,7 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
             else:  # material interface: compressive pressure only (docstring)
                 pa = -(S[a, 0] + S[a, 1] + S[a, 2]) * rho[a] * rho[a] / 3.0
                 pb = -(S[b, 0] + S[b, 1] + S[b, 2]) * rho[b] * rho[b] / 3.0
-                if touch_a:  # a wall pushes on a solid by its normal stress (docstring)
-                    pa = normal_stress(S, a, wn, b) * rho[a] * rho[a]
-                elif touch_b:
-                    pb = normal_stress(S, b, wn, a) * rho[b] * rho[b]
-                if touch_a or touch_b:  # a wall on a solid: bilateral, no clamp (docstring)
-                    ps_w = pws[b] if touch_a else pws[a]
-                    q = -((pa if touch_a else pb) + ps_w) / (rho[a] * rho[b]) - pi
-                elif mirror_a and with_pws and method[a] == WALL:
+                if mirror_a and with_pws and method[a] == WALL:
                     # a dummy wall on a solid: the wall's solid-side pressure (docstring)
                     q = -(max(pws[a], 0.0) + max(pb, 0.0)) / (rho[a] * rho[b]) - pi
                 elif mirror_b and with_pws and method[b] == WALL:
@@ -493,10 +431,6 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
                     f1 += S[a, 4] * ca2 + S[b, 4] * cb2
                     f2 += (S[a, 5] * ca0 + S[a, 4] * ca1 + S[a, 2] * ca2
                            + S[b, 5] * cb0 + S[b, 4] * cb1 + S[b, 2] * cb2)
-            if touch_a or touch_b:  # a wall pushes a solid along its normal alone
-                wr = b if touch_a else a
-                fn = f0 * wn[wr, 0] + f1 * wn[wr, 1] + f2 * wn[wr, 2]
-                f0, f1, f2 = fn * wn[wr, 0], fn * wn[wr, 1], fn * wn[wr, 2]
             # a clamped row's pushes from other materials go to its clamp (docstring)
             force_a = upd_a and not (with_clamped and clamped[a] and mat[a] != mat[b])
             force_b = upd_b and not (with_clamped and clamped[b] and mat[a] != mat[b])

@@ -65,19 +65,17 @@ _NO_VALUES, _NO_VECTORS, _NO_FLAGS = np.zeros(0), np.zeros((0, 3)), np.zeros(0, 
 
 
 def rate_terms(R=None, as_n=1.0, w_dp=1.0, B=None, liu=None, dcoef=None, gradrho=None,
-               morris_mu=None, pw=None, clamped=None, pws=None, wn=None):
+               morris_mu=None, pw=None, clamped=None, pws=None):
     """The optional terms of `sph_rates`, empty arrays where a scene lacks them: artificial
     stress R (rows x 6) with its exponent and W(dp); Bonet-Lok's B or Liu's coefficients;
     delta-SPH's coefficient per material and the rows' density gradients; Morris' viscosity
     per material; the fluid pressure at solid points; the rows held by mirror clamps; the
-    dummy walls' pressure towards solids and their normals where they meet SPH solids
-    (`kernels.sph.walls.wall_normals`)."""
+    dummy walls' pressure towards solids (`kernels.sph.walls.wall_state`)."""
     return (_NO_ROWS6 if R is None else R, float(as_n), float(w_dp),
             _NO_MATRICES if B is None else B, _NO_LIU if liu is None else liu,
             _NO_VALUES if dcoef is None else dcoef, _NO_VECTORS if gradrho is None else gradrho,
             _NO_VALUES if morris_mu is None else morris_mu, _NO_VALUES if pw is None else pw,
-            _NO_FLAGS if clamped is None else clamped, _NO_VALUES if pws is None else pws,
-            _NO_VECTORS if wn is None else wn)
+            _NO_FLAGS if clamped is None else clamped, _NO_VALUES if pws is None else pws)
 
 
 def rates(acc, drho, L, fsi=None, fcpl=None):

@@ -7,7 +7,7 @@ import numpy as np
 
 from ...jit import njit
 from ...codes import SPH, WALL
-from .kernel_functions import kernel_dwdr, kernel_w
+from .kernel_functions import kernel_w
 
 
 @njit
@@ -26,7 +26,7 @@ def extrapolated_pressure(dim, kern, h, x, rho, sigma, gravity, w, f):
 
 @njit
 def wall_state(smoothing, pairs, x, v, rho, sigma, method, mat, materials, fluid, gravity,
-               no_slip, vg, pws, wn):
+               no_slip, vg, pws):
     """Dummy wall particles among rows [0, n_query): Adami et al. (2012) eq. 27,
     p_w = (sum_f p_f W_wf + g . sum_f rho_f (x_w - x_f) W_wf) / sum_f W_wf (static wall),
     rho_w from the inverse Tait law of the wall's material, sigma_w = -p_w I + tau~ with
@@ -41,21 +41,13 @@ def wall_state(smoothing, pairs, x, v, rho, sigma, method, mat, materials, fluid
     density carried there are no fluid pressure (a dense block standing on the floor beside
     the water made the walls under the water 1.1 times rho g H with rho 1e3, 2.4 times with
     rho 1e6, and the water moved; tests/verification/test_sph_walls_solids.py).
-    The push of the wall on an SPH solid is a second state of the same wall, `pws`: eq. 27
-    over the solid SPH rows s instead (non-fluid, not walls),
+    The pressure the wall puts on an SPH solid is a second state of the same wall, `pws`:
+    eq. 27 over the solid SPH rows s instead (non-fluid, not walls),
         pws_w = (sum_s p_s W_ws + g . sum_s rho_s (x_w - x_s) W_ws) / sum_s W_ws,
-    the solid's own compression carried hydrostatically into the wall (0 where no solid is
-    near), used by the wall-solid pairs of `kernels.sph.rates` as the wall end's: the wall
-    holds a solid resting on it as it holds a fluid, and does not feel the fluid beside it
-    doing so (docs/sph.md, "walls and solids"). With `wn` (rows x 3; empty: the mean
-    pressure p_s = -tr(sigma_s)/3, for a scene without SPH solids) p_s is the solid's normal
-    stress across the wall, -n_w . sigma_s . n_w, n_w the wall's own outward unit normal,
-    the unit vector of -sum_w' grad_w W_ww' over its wall partners w', written to wn: a
-    wall carries a solid's normal traction, which is not its mean pressure where the solid
-    is not loaded alike in every direction (a block under its own weight has
-    -tr(sigma)/3 = 0.43 of its normal stress at nu = 0.3: pushed with that, it sank into the
-    floor until its bottom rows blew up). The wall-solid pairs act along n_w
-    (`kernels.sph.rates.sph_rates`).
+    p_s = -tr(sigma_s)/3, the solid's own pressure carried hydrostatically into the wall
+    (0 where no solid is near), used by the wall-solid pairs of `kernels.sph.rates` as the
+    wall end's pressure: the wall holds a solid resting on it as it holds a fluid, and does
+    not feel the fluid beside it doing so (docs/sph.md, "walls and solids").
     Over half neighbour lists (each pair once), the sums gathered for the wall end of every
     wall-fluid and wall-solid pair; a halo wall is left to its owner (then refreshed in the
     halo)."""
@@ -70,9 +62,6 @@ def wall_state(smoothing, pairs, x, v, rho, sigma, method, mat, materials, fluid
     qs = np.zeros(n_query)
     vt = np.zeros((n_query, 3))
     tau = np.zeros((n_query, 3, 3))
-    with_wn = wn.shape[0] > 0
-    if with_wn:  # the walls' outward normals first: the solid sums below use them
-        wall_normals(dim, kern, h, n_query, start, index, x, method, wn)
     for a in range(n_query):
         wa = method[a] == WALL
         for k in range(start[a], start[a + 1]):
@@ -90,12 +79,6 @@ def wall_state(smoothing, pairs, x, v, rho, sigma, method, mat, materials, fluid
             if W == 0.0:
                 continue
             if not is_fluid:  # an SPH solid: the wall's state towards solids (docstring)
-                if with_wn:  # its normal stress across the wall, not its mean pressure
-                    sn = 0.0
-                    for i in range(3):
-                        for j in range(3):
-                            sn += wn[w, i] * sigma[f, i, j] * wn[w, j]
-                    pw_f += -sn - pf
                 qs[w] += pw_f * W
                 ss[w] += W
                 continue
@@ -124,44 +107,6 @@ def wall_state(smoothing, pairs, x, v, rho, sigma, method, mat, materials, fluid
                 sigma[w, i, j] = tau[w, i, j] * inv - (p if i == j else 0.0)
         for d in range(dim):
             vg[w, d] = sgn * vt[w, d] * inv + (2.0 * v[w, d] if no_slip else 0.0)
-
-
-@njit
-def wall_normals(dim, kern, h, n_query, start, index, x, method, wn):
-    """The owned wall rows' outward unit normals, -sum_w' grad_w W_ww' over their wall
-    partners w' normalised (the side of a wall body its particles thin out towards: up on
-    a floor, the diagonal in a corner), into wn (0 elsewhere and where the sum vanishes,
-    deep inside a wall). Over half neighbour lists: an owned wall meets each of its
-    partners once, in its own list or in the partner's."""
-    for a in range(n_query):
-        for d in range(3):
-            wn[a, d] = 0.0
-    for a in range(n_query):
-        if method[a] != WALL:
-            continue
-        for k in range(start[a], start[a + 1]):
-            b = index[k]
-            if method[b] != WALL:
-                continue
-            r2 = 0.0
-            for d in range(dim):
-                r2 += (x[a, d] - x[b, d]) ** 2
-            if r2 == 0.0 or r2 >= 4.0 * h * h:
-                continue
-            r = np.sqrt(r2)
-            fr = -kernel_dwdr(kern, dim, r, h) / r  # -grad_a W_ab = fr (x_a - x_b)
-            for d in range(dim):
-                wn[a, d] += fr * (x[a, d] - x[b, d])
-                if b < n_query:
-                    wn[b, d] -= fr * (x[a, d] - x[b, d])
-    for a in range(n_query):
-        size = np.sqrt(wn[a, 0] ** 2 + wn[a, 1] ** 2 + wn[a, 2] ** 2)
-        if size > 1e-12 * h ** (-dim - 1):
-            for d in range(3):
-                wn[a, d] /= size
-        else:
-            for d in range(3):
-                wn[a, d] = 0.0
 
 
 @njit
@@ -205,5 +150,4 @@ def mirror_pressure(smoothing, pairs, x, rho, sigma, method, mat, fluid, gravity
     for w in range(n_query):
         if sw[w] > 0.0:
             pw[w] /= sw[w]
-
 

@@ -53,10 +53,6 @@ from .integrators import SPH_INTEGRATORS
 from .mirror_clamp import MirrorClamps
 from ...timing import Timers
 
-#: no wall normals (`wall_state` without SPH solids beside the walls)
-_NO_NORMALS = np.zeros((0, 3))
-
-
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
 #: may stray this far past their slab face before they migrate (`MigrationSchedule`)
 HALO_MARGIN = 0.5
@@ -203,11 +199,6 @@ class SPHStage:
             out.append(FieldSpec("vg", ("dim",), migrate=False, halo=True))
             # the walls' pressure towards SPH solids (kernels/sph/walls.py wall_state)
             out.append(FieldSpec("pws", (), migrate=False, halo=True))
-            if case.regions or any(b.method == "sph" and not case.materials[b.material].fluid
-                                   for b in case.bodies):
-                # the walls' normals (kernels/sph/walls.py wall_normals): their contact
-                # with SPH solids (kernels/sph/rates.py)
-                out.append(FieldSpec("wn", (3,), migrate=False, halo=True))
         if fluid_meets_solid(case):  # the fluid pressure at solid rows (mirror pairs)
             out.append(FieldSpec("pw", (), migrate=False, halo=True))
         if case.sph.artificial_stress > 0:
@@ -353,8 +344,7 @@ class SPHStage:
         return rate_terms(R=R, as_n=self.spec.artificial_stress_exponent,
                           w_dp=self.w_dp, B=self._B(), liu=self._liu(), dcoef=dcoef,
                           gradrho=gradrho, morris_mu=self.morris_mu, pw=pw, clamped=clamped,
-                          pws=self.p.with_halo("pws") if "pws" in self.p else None,
-                          wn=self.p.with_halo("wn") if "wn" in self.p else None)
+                          pws=self.p.with_halo("pws") if "pws" in self.p else None)
 
     def _B(self):
         return self.p.with_halo("B") if self.corr and not self.liu else None
@@ -488,7 +478,7 @@ class SPHStage:
         self._place_ghosts()
         # the wall velocities and the solids' mirrored pressures are derived below from the
         # refreshed rows and then refreshed themselves: not sent twice
-        self._update_neighbours(skip=("vg", "pws", "pw", "wn"))
+        self._update_neighbours(skip=("vg", "pws", "pw"))
         n, nt = p.n_owned, p.n_total
         x = p.with_halo("x")
         if "vg" in p:
@@ -498,8 +488,7 @@ class SPHStage:
                 wall_state(self._smoothing(), self._pairs(n), x, p.with_halo("v"),
                            p.with_halo("rho"), p.with_halo("sigma"), p.with_halo("method"),
                            p.with_halo("mat"), (self.mtypes, self.mparams), self.fluid,
-                           self.gravity, self.no_slip, p.with_halo("vg"), p.with_halo("pws"),
-                           p.with_halo("wn") if "wn" in p else _NO_NORMALS)
+                           self.gravity, self.no_slip, p.with_halo("vg"), p.with_halo("pws"))
         if "pw" in p:  # (after the walls: a wall of a solid material is a solid row too)
             with t.phase("sph"):
                 mirror_pressure(self._smoothing(), self._pairs(n), x, p.with_halo("rho"),
@@ -507,7 +496,6 @@ class SPHStage:
                                 p.with_halo("mat"), self.fluid,
                                 self.gravity, p.with_halo("pw"))
         derived = ((("rho", "sigma", "vg", "pws") if "vg" in p else ())
-                   + (("wn",) if "wn" in p else ())
                    + (("pw",) if "pw" in p else ()))
         if derived and self.halo_enabled:
             with t.phase("halo"):
