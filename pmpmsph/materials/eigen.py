@@ -32,6 +32,13 @@ def _cross(a0, a1, a2, b0, b1, b2):
 
 
 @njit(inline="always")
+def _sym_times(c00, c11, c22, c01, c12, c02, u0, u1, u2):
+    """C u for the symmetric C."""
+    return (c00 * u0 + c01 * u1 + c02 * u2, c01 * u0 + c11 * u1 + c12 * u2,
+            c02 * u0 + c12 * u1 + c22 * u2)
+
+
+@njit(inline="always")
 def _longer(x0, x1, x2, n, y0, y1, y2):
     """(y, |y|^2) if |y|^2 > n = |x|^2, else (x, n), by arithmetic, not a branch (exact:
     one of the two products is 0)."""
@@ -131,12 +138,8 @@ def sym_eigen(xx, yy, zz, xy, yz, xz):
     u0, u1, u2 = 1.0 + sg * v0 * v0 * a, sg * b, -sg * v0
     t0, t1, t2 = b, sg + v1 * v1 * a, -v1
     # C u and C w, then the 2x2 [[u.Cu, u.Cw], [u.Cw, w.Cw]]
-    cu0 = c00 * u0 + c01 * u1 + c02 * u2
-    cu1 = c01 * u0 + c11 * u1 + c12 * u2
-    cu2 = c02 * u0 + c12 * u1 + c22 * u2
-    cw0 = c00 * t0 + c01 * t1 + c02 * t2
-    cw1 = c01 * t0 + c11 * t1 + c12 * t2
-    cw2 = c02 * t0 + c12 * t1 + c22 * t2
+    cu0, cu1, cu2 = _sym_times(c00, c11, c22, c01, c12, c02, u0, u1, u2)
+    cw0, cw1, cw2 = _sym_times(c00, c11, c22, c01, c12, c02, t0, t1, t2)
     c, s, mu1, mu2 = _rotation(u0 * cu0 + u1 * cu1 + u2 * cu2,
                                t0 * cw0 + t1 * cw1 + t2 * cw2,
                                u0 * cw0 + u1 * cw1 + u2 * cw2)
