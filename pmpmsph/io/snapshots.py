@@ -184,18 +184,27 @@ class SnapshotWriter:
             f.create_group(TOPOLOGY)
 
     def _open_append(self, after_step):
-        """Continue an existing file: drop snapshots after `after_step`, carry on numbering.
-        A kill while HDF5 flushed the file's metadata can leave a link it cannot delete
-        ("Couldn't delete link", seen once in many killed runs): then the complete snapshots
-        up to `after_step` are copied into a new file, and the damaged one is kept beside it
-        (`particles.h5.damaged`), so nothing written before the kill is lost."""
+        """Continue an existing file: keep its complete snapshots up to `after_step`, carry on
+        numbering. Snapshots to drop (those after `after_step`, and a group a kill cut short)
+        are not unlinked in place: unlinking from a file a kill left half-written crashed
+        HDF5 itself (a segfault in H5Gunlink, seen in tests/parallel/test_faults.py), and
+        once a "Couldn't delete link" error. The snapshots kept are copied into a fresh file
+        that then replaces the old one. If the old file cannot even be read, it is kept
+        beside the new one (`particles.h5.damaged`), so nothing written before the kill is
+        lost."""
         try:
-            self._drop_after(after_step)
+            rewrite = self._has_snapshots_to_drop(after_step)
         except (KeyError, OSError) as err:
             damaged = self.path + ".damaged"
             log.warning("%s: %s; its complete snapshots go to a new file, the old one is kept "
                         "as %s", self.path, err, os.path.basename(damaged))
-            self._copy_complete(after_step, damaged)
+            os.replace(self.path, damaged)
+            self._copy_complete(damaged, self.path, after_step)
+        else:
+            if rewrite:
+                fresh = self.path + ".tmp"
+                self._copy_complete(self.path, fresh, after_step)
+                os.replace(fresh, self.path)
         with open_h5(self.path, "r+", libver=LIBVER) as f:
             done = complete_snapshots(f[GROUP])
             self.index = done[-1].index + 1 if done else 0
@@ -214,21 +223,18 @@ class SnapshotWriter:
         return [i.name for i in complete_snapshots(grp)
                 if after_step is None or i.step <= after_step]
 
-    def _drop_after(self, after_step):
-        """Delete a half-written last group of a killed run and those after `after_step`."""
-        with open_h5(self.path, "r+", libver=LIBVER) as f:
+    def _has_snapshots_to_drop(self, after_step):
+        """Whether the file holds groups after `after_step` or cut short (read only)."""
+        with open_h5(self.path, "r", libver=LIBVER) as f:
             if f.attrs.get("format") != FORMAT or GROUP not in f:
                 raise ValueError(f"cannot append to {self.path}: not a pmpmsph snapshot file")
             grp = f[GROUP]
-            keep = set(self._keep(grp, after_step))
-            for name in [n for n in grp.keys() if n not in keep]:
-                del grp[name]
+            return len(self._keep(grp, after_step)) != len(grp)
 
-    def _copy_complete(self, after_step, damaged):
-        """Rewrite the file with its attributes, its topology and its complete snapshots up
-        to `after_step` only; the original is renamed to `damaged`."""
-        os.replace(self.path, damaged)
-        with open_h5(damaged, "r") as src, open_h5(self.path, "w", libver=LIBVER) as dst:
+    def _copy_complete(self, source, target, after_step):
+        """Write `target` with the attributes, the topology and the complete snapshots up to
+        `after_step` of `source`."""
+        with open_h5(source, "r") as src, open_h5(target, "w", libver=LIBVER) as dst:
             for key, value in src.attrs.items():
                 dst.attrs[key] = value
             dst.create_group(GROUP, track_order=True)

@@ -90,7 +90,8 @@ def test_roundtrip_fields_and_attrs(dist, tmp_path):
 def test_a_half_written_last_snapshot_is_left_out_and_dropped_on_append(dist, tmp_path):
     """A run killed while it wrote a snapshot can leave its group without attributes (or with
     an object header cut short): the complete snapshots stay readable, and a restart
-    appending to the file removes the leftover."""
+    appending to the file removes the leftover (by rewriting the file: unlinking it in
+    place once crashed HDF5)."""
     path = write_run(dist, str(tmp_path / "run.h5"))
     with h5py.File(path, "r+") as f:
         f[GROUP].create_group(snapshot_name(3))  # created, nothing written yet
@@ -101,15 +102,19 @@ def test_a_half_written_last_snapshot_is_left_out_and_dropped_on_append(dist, tm
     assert [i.step for i in list_snapshots(path)] == [0, 7, 8]
     with h5py.File(path, "r") as f:
         assert sorted(f[GROUP].keys()) == [snapshot_name(i) for i in range(3)]
+    # dropped by copying the kept snapshots into a fresh file (no unlink in the old one)
+    assert read_attrs(path)["case"] == "[time]\nend = 1.0\n"
+    assert not os.path.exists(path + ".tmp") and not os.path.exists(path + ".damaged")
 
 
-def test_a_link_hdf5_cannot_delete_leaves_a_new_file_of_the_complete_snapshots(
+def test_a_file_hdf5_cannot_read_leaves_a_new_file_of_the_complete_snapshots(
         dist, tmp_path, monkeypatch):
     """A kill while HDF5 flushed the file's metadata once left a link that the restart could
     not delete ("Couldn't delete link (memory allocation failed for on disk image buffer)";
-    tests/parallel/test_faults.py, 2026-11-27): the restart then copies the complete
-    snapshots up to its step into a new particles file and keeps the damaged one beside it,
-    and goes on appending."""
+    tests/parallel/test_faults.py, 2026-11-27), and once one whose unlinking crashed HDF5;
+    the restart no longer unlinks (test above). Should the file fail to be read, the
+    restart copies the complete snapshots up to its step into a new particles file, keeps
+    the damaged one beside it, and goes on appending."""
     path = write_run(dist, str(tmp_path / "run.h5"))
     with h5py.File(path, "r+") as f:
         f[GROUP].create_group(snapshot_name(3))  # a half-written group of the kill
@@ -118,7 +123,7 @@ def test_a_link_hdf5_cannot_delete_leaves_a_new_file_of_the_complete_snapshots(
         raise KeyError("Couldn't delete link (memory allocation failed for on disk image "
                        "buffer)")
 
-    monkeypatch.setattr(SnapshotWriter, "_drop_after", fails)
+    monkeypatch.setattr(SnapshotWriter, "_has_snapshots_to_drop", fails)
     with SnapshotWriter(dist, path, append=True, after_step=7) as w:
         assert w.write(8, 0.5, make_fields(2)) == 2
     assert [i.step for i in list_snapshots(path)] == [0, 7, 8]
