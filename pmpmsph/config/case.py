@@ -130,6 +130,9 @@ class BodySpec:
     wall: bool = False          # SPH dummy wall particles (pressure extrapolated); their
                                 # `velocity` is the wall's (a lid: no-slip drags the fluid)
     moving: bool = False        # a wall that also moves with its velocity (else it stays)
+    friction: float | None = None  # a contact wall's Coulomb coefficient towards SPH
+                                # solids (0: smooth; None: a plain dummy wall;
+                                # kernels/sph/contact.py)
 
 
 @dataclass(frozen=True)

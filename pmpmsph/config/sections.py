@@ -118,12 +118,18 @@ def _body(t, dim, materials, grid):
     if moving and isinstance(velocity, InitialField):  # (stage.py moves x by v each step)
         raise ConfigError(t.key("velocity"), "a moving wall moves rigidly: give its velocity "
                           "as numbers, not expressions")
+    # a contact wall's Coulomb coefficient towards SPH solids (kernels/sph/contact.py)
+    friction = t.number("friction", None, min=0.0)
+    if friction is not None and not wall:
+        raise ConfigError(t.key("friction"), "friction is a dummy wall's (wall = true) "
+                          "Coulomb coefficient towards SPH solids; an MPM floor's friction "
+                          "is a [[boundaries]] entry of type \"friction\"")
     if method == "sph" and ppc is not None and grid is None:
         raise ConfigError(t.key("ppc"), "SPH bodies without a [grid] are seeded by spacing "
                           "or count, not ppc")
     t.finish()
     return BodySpec(name, method, mat, geom, ppc, spacing, count, velocity, stress, wall,
-                    moving)
+                    moving, friction)
 
 
 def _body_spacing(body, grid=None):
@@ -214,6 +220,11 @@ def _sph(t, dim, bodies, materials, grid=None, coupled=False):
         if b.wall and not materials[b.material].fluid:
             raise ConfigError(f"bodies[{i}].material", "wall particles take a fluid "
                               "material (their density follows the extrapolated pressure)")
+        if b.friction is not None and formulation == "total":
+            raise ConfigError(f"bodies[{i}].friction", "contact walls act on updated-"
+                              "Lagrangian SPH solids; the total formulation's solids do not "
+                              "meet walls: set [sph] formulation = \"updated\" or remove "
+                              "friction")
     correction, correction_kind = _correction(t, formulation)
     kappa = _hourglass(t, formulation, integrator)
     spec = SPHSpec(

@@ -1,4 +1,6 @@
 """Small scenes shared by the parallel tests (Python Scene API, seconds to run)."""
+import numpy as np
+
 from pmpmsph import Scene
 from pmpmsph.bench.scenes import (coupled_bar_1d, coupled_stress_bar, shear_velocity,
                                    sph_bar_1d, sph_dam_break, tl_plate, two_disks)
@@ -6,7 +8,8 @@ from pmpmsph.bench.scenes import (coupled_bar_1d, coupled_stress_bar, shear_velo
 # the scenes the accuracy bench shares live in pmpmsph/bench/scenes.py; the tests import
 # them from here as before
 __all__ = ["coupled_bar_1d", "coupled_stress_bar", "dam_break", "handover_bar", "loaded_bar",
-           "shear_velocity", "sph_bar_1d", "sph_dam_break", "tl_plate", "two_disks"]
+           "shear_velocity", "sph_bar_1d", "sph_block_on_walls", "sph_dam_break", "tl_plate",
+           "two_disks"]
 
 
 def dam_break(shape="quadratic", transfer="usl", barrier=True, balance_every=0,
@@ -62,4 +65,21 @@ def handover_bar(v=50.0):
             velocity=[v])
     sc.data["regions"] = [dict(method="sph", shape="box", min=[0.6], max=[1.5])]
     sc.data["coupling"] = dict(handover=True)
+    return sc
+
+
+def sph_block_on_walls(theta=30.0, dp=0.005, friction=0.3):
+    """A neo-Hookean SPH block sliding down a rough floor of contact walls (gravity tilted
+    by `theta` degrees; tests/verification/test_sph_wall_friction.py), slabs cut along x
+    through the block: the contact and its friction cross the slab faces."""
+    th = np.radians(theta)
+    sc = Scene(2, domain=dict(min=[-0.1, -0.1], max=[0.8, 0.2]),
+               gravity=[9.81 * np.sin(th), -9.81 * np.cos(th)], time=dict(end=0.1, cfl=0.3),
+               sph=dict(kernel="wendland"), parallel=dict(axis="x", balance_every=0))
+    sc.material("floor", model="tait", rho=1000.0, kappa=1.0e5)
+    sc.material("block", model="neo_hookean", E=2.0e6, nu=0.3, rho=2000.0)
+    sc.body(name="block", method="sph", material="block", shape="box", min=[0.15, 0.0],
+            max=[0.55, 0.05], spacing=dp)  # (the slab faces of 2 or 3 ranks cut it)
+    sc.body(name="floor", method="sph", material="floor", wall=True, friction=friction,
+            shape="box", min=[-0.05, -4 * dp], max=[0.75, 0.0], spacing=dp)
     return sc

@@ -11,7 +11,7 @@ import pytest
 from mpi_util import assert_equals_one_rank, serial, world
 from pmpmsph.bench.scenes import sph_cavity, sph_couette
 from pmpmsph.errors import RunError
-from scenes import sph_bar_1d, sph_dam_break
+from scenes import sph_bar_1d, sph_block_on_walls, sph_dam_break
 
 pytestmark = pytest.mark.mpi
 
@@ -156,3 +156,13 @@ def test_a_particle_skipping_a_slab_stops_every_rank():
         sim.step()
     if dist.rank == 0:
         assert err.value.gid == gid
+
+
+def test_sph_block_on_walls_equals_one_rank():
+    """The contact walls (kernels/sph/contact.py: the gaps to wall cells found over the
+    halo's wall rows, the push and the Coulomb friction) are rank-invariant: a block
+    sliding down a rough incline (mu = 0.3), cut by the slab faces."""
+    dist, sim, ref = _on_both(sph_block_on_walls, 600)
+    block = sim.particles["body"][: sim.particles.n_owned] == 0
+    assert dist.size == 1 or dist.min(int(block.sum())) > 0  # (the block is cut)
+    _compare(dist, sim, ref)

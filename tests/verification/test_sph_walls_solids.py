@@ -147,3 +147,43 @@ def test_water_beside_a_solid_block_stays_at_rest(plain, block):
     assert v < 0.025 * scale  # (before the fix 3.7 sqrt(g H))
     assert np.abs(p - p0).max() < 1e-3 * ref  # (before the fix 1.4 rho g H at t = 0.1)
     assert np.abs(p / ref - 1).max() < 0.035  # (the plain tank's own ringing: +3.3 %)
+
+
+@pytest.mark.parametrize("friction", [0.0, 0.3])
+def test_free_sph_block_stands_on_contact_walls(friction):
+    """The SPH block alone (no water, not held), on contact walls (`friction` on the floor
+    and both side walls; kernels/sph/contact.py): it touches the floor and the right wall,
+    and stays where it stands: over 0.1 s its lowest particle within 0.01 spacings of its
+    start, every particle slower than 0.03 m/s, and its right face within 0.01 spacings of
+    the wall on the rough floor (0.05 on the smooth one: its weight bulges it against the
+    wall, which pushes it off, and nothing holds it). Measured: 0.00014 / 0.00013
+    spacings down, the face 0.0175 / 0.0001 spacings off, 0.018 / 0.020 m/s (friction 0 /
+    0.3).
+    On the plain dummy walls it sinks into the floor (0.54 spacings by t = 0.095,
+    docs/sph.md "Walls and solids")."""
+    text = tank("sph").replace('[[prescribed]]\nbody = "block"\nvelocity = [0.0, 0.0]\n', "")
+    start = text.index('[[bodies]]\nname = "water"')
+    text = text[:start] + text[text.index("[[bodies]]", start + 1):]  # no water
+    text = text.replace('wall = true\nmaterial = "water"',
+                        f'wall = true\nfriction = {friction}\nmaterial = "water"')
+    sim = Simulation(load_case_text(text), dist=Distributor(MPI.COMM_SELF))
+    p = sim.particles
+    n = p.n_owned
+    low0 = p["x"][:n][p["body"][:n] == 0, 1].min()  # (the block is body 0 now)
+    right0 = p["x"][:n][p["body"][:n] == 0, 0].max()
+    out = {"sink": 0.0, "off": 0.0, "v": 0.0}
+
+    def watch(s):
+        n = p.n_owned
+        block = p["body"][:n] == 0
+        out["sink"] = max(out["sink"], low0 - p["x"][:n][block, 1].min())
+        out["off"] = max(out["off"], abs(p["x"][:n][block, 0].max() - right0))
+        out["v"] = max(out["v"], float(np.abs(p["v"][:n][block]).max()))
+
+    sim.run(on_step=watch)
+    print(f"free block, friction {friction}: lowest particle down "
+          f"{out['sink'] / DP:.5f} spacings, right face off {out['off'] / DP:.5f}, "
+          f"max speed {out['v']:.4f} m/s")
+    assert out["sink"] < 0.01 * DP
+    assert out["off"] < (0.05 if friction == 0.0 else 0.01) * DP
+    assert out["v"] < 0.03

@@ -87,6 +87,10 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
     the wall's density taken as the solid's: the wall holds a resting solid up by the
     solid's own weight, whatever water stands beside it (whose pressure the same wall takes
     towards the fluid). Without walls (`pws` empty) such pairs do not occur.
+    A contact wall (a wall body with `friction`) meets an SPH solid through
+    `kernels.sph.contact.wall_contact` alone (a unilateral penalty on the overlap with the
+    wall's surface, and Coulomb friction): such pairs are skipped here (no pressure push,
+    no viscosity, the wall out of the solid's kinematics).
     Other material interfaces (two solids, two fluids) keep the contact pressure
     p_c = max(p_a, p_b, 0) on both ends, -p_c (1/rho_a^2 + 1/rho_b^2) I: the full sigma/rho^2
     term would let a solid in tension pull the other body's particles into it; within one
@@ -155,7 +159,9 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
     x, v, vg, mass, rho, S, cs, method, mat = rows
     (corr_tag, fluid, gravity, damping, av_alpha, av_beta, want_force, want_L, want_fsi,
      split) = options
-    R, as_n, w_dp, B, liu, dcoef, gradrho, morris_mu, pw, clamped, pws = terms
+    R, as_n, w_dp, B, liu, dcoef, gradrho, morris_mu, pw, clamped, pws, contact = terms
+    wall_mu, body = contact
+    with_contact = wall_mu.shape[0] > 0  # (contact walls: kernels/sph/contact.py)
     acc, drho, L, fsi, fcpl = out
     dim = len(dim_tag)
     kern = len(kern_tag) - 1
@@ -234,6 +240,12 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
             if r2 >= h4 or r2 == 0.0:
                 continue
             r = np.sqrt(r2)
+            if with_contact and (  # a contact wall and an SPH solid: not here (docstring)
+                    (upd_a and method[b] == WALL and not fluid[mat_a]
+                     and wall_mu[body[b]] >= 0.0)
+                    or (upd_b and method[a] == WALL and not fluid[mat[b]]
+                        and wall_mu[body[a]] >= 0.0)):
+                continue
             fr = kernel_dwdr(kern, dim, r, h) / r
             g0 = fr * xab0
             g1 = fr * xab1

@@ -62,20 +62,24 @@ def rate_options(corr_tag, fluid, gravity, damping, av_alpha, av_beta, want_forc
 #: the empty arrays that stand for absent terms (never written; made once, not per call)
 _NO_ROWS6, _NO_MATRICES, _NO_LIU = np.zeros((0, 6)), np.zeros((0, 3, 3)), np.zeros((0, COEF))
 _NO_VALUES, _NO_VECTORS, _NO_FLAGS = np.zeros(0), np.zeros((0, 3)), np.zeros(0, np.bool_)
+#: no contact walls (kernels/sph/contact.py): (Coulomb coefficient by body, the rows' body)
+NO_CONTACT = (_NO_VALUES, np.zeros(0, np.int32))
 
 
 def rate_terms(R=None, as_n=1.0, w_dp=1.0, B=None, liu=None, dcoef=None, gradrho=None,
-               morris_mu=None, pw=None, clamped=None, pws=None):
+               morris_mu=None, pw=None, clamped=None, pws=None, contact=None):
     """The optional terms of `sph_rates`, empty arrays where a scene lacks them: artificial
     stress R (rows x 6) with its exponent and W(dp); Bonet-Lok's B or Liu's coefficients;
     delta-SPH's coefficient per material and the rows' density gradients; Morris' viscosity
     per material; the fluid pressure at solid points; the rows held by mirror clamps; the
-    dummy walls' pressure towards solids (`kernels.sph.walls.wall_state`)."""
+    dummy walls' pressure towards solids; the contact walls (`kernels.sph.contact`): the
+    Coulomb coefficient by body (< 0: a plain dummy wall) and the rows' bodies."""
     return (_NO_ROWS6 if R is None else R, float(as_n), float(w_dp),
             _NO_MATRICES if B is None else B, _NO_LIU if liu is None else liu,
             _NO_VALUES if dcoef is None else dcoef, _NO_VECTORS if gradrho is None else gradrho,
             _NO_VALUES if morris_mu is None else morris_mu, _NO_VALUES if pw is None else pw,
-            _NO_FLAGS if clamped is None else clamped, _NO_VALUES if pws is None else pws)
+            _NO_FLAGS if clamped is None else clamped, _NO_VALUES if pws is None else pws,
+            NO_CONTACT if contact is None else contact)
 
 
 def rates(acc, drho, L, fsi=None, fcpl=None):

@@ -25,8 +25,9 @@ import numpy as np
 from ...codes import SPH
 from ...kernels.neighbours import moved_beyond, neighbour_lists
 from ...kernels.sph.rates import sph_rates
-from ...kernels.sph.views import (pair_lists, pair_rows, rate_options, rate_terms, rates,
-                                  shift_fields, smoothing_of, sph_state)
+from ...kernels.sph.contact import wall_contact, wall_gaps
+from ...kernels.sph.views import (NO_CONTACT, pair_lists, pair_rows, rate_options,
+                                  rate_terms, rates, shift_fields, smoothing_of, sph_state)
 from ...kernels.sph.stress import pair_stress, sound_speeds, sph_stress, sync_ghost_velocity
 from ...kernels.sph.artificial_stress import artificial_stress
 from ...kernels.sph.correction import correction_matrices
@@ -170,6 +171,14 @@ class SPHStage:
         self.split = self.dcoef is not None and spec.density_diffusion_model == "fourtakas"
         # particle shifting: A h of D = A h |v| dt (0: off)
         self.shift_coef = spec.shifting * self.h if shifting_fluids(case) else 0.0
+        # contact walls (kernels/sph/contact.py): the Coulomb coefficient of each body (< 0:
+        # a plain dummy wall, or not a wall), the solid rows' gaps to them (scratch); the
+        # friction's stick limit needs the step's dt (`step`)
+        self.wall_mu = np.array([-1.0 if b.friction is None else b.friction
+                                 for b in case.bodies])
+        self.contact = bool(np.any(self.wall_mu >= 0.0))
+        self._gaps = np.zeros((0, 5))
+        self.dt = 0.0
         # walls that move with their velocity (bodies[].moving), by body index
         self.moving_walls = np.array([i for i, b in enumerate(case.bodies) if b.moving],
                                      np.int32)
@@ -344,7 +353,9 @@ class SPHStage:
         return rate_terms(R=R, as_n=self.spec.artificial_stress_exponent,
                           w_dp=self.w_dp, B=self._B(), liu=self._liu(), dcoef=dcoef,
                           gradrho=gradrho, morris_mu=self.morris_mu, pw=pw, clamped=clamped,
-                          pws=self.p.with_halo("pws") if "pws" in self.p else None)
+                          pws=self.p.with_halo("pws") if "pws" in self.p else None,
+                          contact=(self.wall_mu, self.p.with_halo("body")) if self.contact
+                          else NO_CONTACT)
 
     def _B(self):
         return self.p.with_halo("B") if self.corr and not self.liu else None
@@ -532,6 +543,14 @@ class SPHStage:
                                  p.with_halo("u"), p.with_halo("X0"), p.with_halo("Fh"),
                                  p.with_halo("mass"), rho, p.with_halo("cs"), self.hourglass,
                                  p.with_halo("acc"))
+            if self.contact:  # after every other force: the friction bounds their sum
+                self._gaps = rows_at_least(self._gaps, n)
+                wall_gaps(self.dim, n, self.start, self.index, x, p.with_halo("mass"), rho,
+                          p.with_halo("method"), p.with_halo("mat"), self.fluid,
+                          self.wall_mu, p.with_halo("body"), self._gaps)
+                wall_contact(self.dim_tag, n, self._gaps, p.with_halo("v"),
+                             p.with_halo("mass"), rho, p.with_halo("cs"), self.wall_mu,
+                             p.with_halo("body"), self.dt, p.with_halo("acc"))
         if self._mirror is not None:  # the ghosts' forces to their partners
             self._mirror.hand_back(p["acc"], self.gravity[: self.dim], self.spec.damping)
         if self.constraint is not None:
@@ -646,6 +665,7 @@ class SPHStage:
         n = p.n_owned
         if not self.evaluated:
             self.initialise()
+        self.dt = dt
         m0 = self._mstate(n).copy()
         bad = self.integrator.updated(self, dt, m0, kicked)
         if self.shift_coef > 0.0 and bad < 0:
