@@ -40,7 +40,7 @@ END_FACTOR = 5.6  # the run ends at END_FACTOR sqrt(H0 / g): at rest (0.8 s at a
 THICK, BIN = 0.1, 0.05  # the thickness front: deposit >= THICK L0, binned over BIN L0
 PERCENT = 99.5
 KE_EVERY = 20  # steps between kinetic-energy samples
-LAYERS = 3  # SPH: layers of held particles making the floor and the wall
+LAYERS = 3  # SPH: layers of wall particles making the floor and the wall
 
 
 def lube_runout(a):
@@ -87,12 +87,14 @@ def runouts(x, y, spacing, l0=L0):
 def column(dist, cell, a=2.0, shape="gimp", transfer="usl", update="apic", end=None,
            method="mpm"):
     """The collapse of the a-column (L0 = 0.1 m) in MPM cells of `cell` (2 x 2 particles
-    each), or (method "sph") as an SPH body of particles cell / 2 apart, the same count;
-    ends at END_FACTOR sqrt(H0 / g) unless `end` is given."""
+    each), or (method "sph") as an SPH body of particles cell / 2 apart, the same count, on
+    contact walls ("sph_held": on held sand particles, `sph_case`); ends at
+    END_FACTOR sqrt(H0 / g) unless `end` is given."""
     h0 = a * L0
     end = END_FACTOR * np.sqrt(h0 / G) if end is None else end
-    if method == "sph":
-        return Simulation(sph_case(cell / PPC, a, end), dist=dist, write_output=False)
+    if method in ("sph", "sph_held"):
+        return Simulation(sph_case(cell / PPC, a, end, held=method == "sph_held"), dist=dist,
+                          write_output=False)
     over = [("grid.cell_size", cell),
             ("grid.cells", [int(np.ceil(domain_length(a) * L0 / cell - 1e-9)),
                             int(np.ceil(h0 / cell - 1e-9)) + 2]),
@@ -101,16 +103,17 @@ def column(dist, cell, a=2.0, shape="gimp", transfer="usl", update="apic", end=N
     return Simulation(load_case_file(CASE, over), dist=dist, write_output=False)
 
 
-def sph_case(spacing, a, end):
+def sph_case(spacing, a, end, held=False):
     """The case file's column as an updated-Lagrangian SPH body (Wendland C2, h = 1.3
-    spacings, predictor-corrector): SPH walls are for fluids, so the floor is LAYERS
-    layers of sand particles below y = 0 held at rest (a rough floor, where the MPM one
-    has Coulomb friction: at L0 / 20 a fixed MPM floor moves the percentile front by 1 %),
-    and the wall LAYERS layers behind x = 0 held in x only (they slide freely along it: a
-    slip wall). The column is body 0."""
+    spacings, predictor-corrector) on contact walls (kernels/sph/contact.py) of LAYERS
+    layers: the floor below y = 0 with the MPM floor's Coulomb coefficient, the wall behind
+    x = 0 smooth (a slip wall). `held`: the set-up before contact walls, LAYERS layers of
+    sand particles held at rest as the floor (rough: no slip at all) and held in x only as
+    the wall. The column is body 0."""
     with open(CASE, "rb") as fh:
         d = tomllib.load(fh)
     h0, xl, t = a * L0, domain_length(a) * L0, LAYERS * spacing
+    mu = next(b["friction"] for b in d["boundaries"] if b.get("type") == "friction")
     for k in ("grid", "mpm", "boundaries"):
         del d[k]
     d["domain"] = {"min": [-2.0 * t, -2.0 * t], "max": [xl + 2.0 * t, h0 + 2.0 * t + 0.5 * L0]}
@@ -119,8 +122,15 @@ def sph_case(spacing, a, end):
     d["bodies"] = [dict(box, name="column", min=[0.0, 0.0], max=[L0, h0]),
                    dict(box, name="floor", min=[-t, -t], max=[xl, 0.0]),
                    dict(box, name="wall", min=[-t, 0.0], max=[0.0, h0])]
-    d["prescribed"] = [{"body": "floor", "velocity": [0.0, 0.0]},
-                       {"body": "wall", "velocity": [0.0, "free"]}]
+    if held:
+        d["prescribed"] = [{"body": "floor", "velocity": [0.0, 0.0]},
+                           {"body": "wall", "velocity": [0.0, "free"]}]
+    else:  # wall particles take a fluid material: its density sets their cells; its wave
+        # speed (sqrt(7 kappa / rho) = 6.8 m/s, under the sand's 42) must not set the step
+        rho = d["materials"]["sand"]["rho"]
+        d["materials"]["wall"] = {"model": "tait", "rho": rho, "kappa": 1.0e4}
+        for b, friction in zip(d["bodies"][1:], (mu, 0.0)):
+            b.update(material="wall", wall=True, friction=friction)
     d["time"] = {"end": end, "cfl": 0.3}
     return case_from_dict(d, name="column_collapse_sph")
 
@@ -141,7 +151,7 @@ def collapse(sim, spacing, l0=L0):
     t, k = np.array(ke).T
     moving = t[k > 1e-4 * k.max()]
     g = gathered(sim, ["x", "body"])
-    x = g["x"][g["body"] == 0]  # the column (SPH: not the held floor and wall)
+    x = g["x"][g["body"] == 0]  # the column (SPH: not the floor and wall)
     thick, pct = runouts(x[:, 0], x[:, 1], spacing, l0)
     return {"thickness": thick, "percentile": pct, "ke_peak": float(k.max()),
             "ke_end": float(d["kinetic"]), "rest": float(moving[-1]) if moving.size else 0.0,
@@ -168,9 +178,10 @@ COLUMN = dict(
                   update="apic", quick=True),
              dict(label="MPM quadratic usl mls", family="MPM", shape="quadratic",
                   transfer="usl", update="mls"),
-             # 10x the MPM cost (held floor and wall, shorter steps): 21 s and 184 s at the
+             # on contact walls (a Coulomb floor, a slip wall): 28 s and 181 s at the
              # first two levels, the third would take ~25 minutes; its thickness front is
-             # noisy at L0 / 10 (a ragged surface one particle per bin: 2.0 or 2.8)
+             # noisy at L0 / 10 (a ragged surface one particle per bin: on the held floor
+             # used before, 2.0 or 2.8 as the domain changed by 4 mm)
              dict(label="SPH UL wendland PEC", family="SPH UL",
                   levels={"full": [0.01, 0.005], "quick": [0.01]})],
     levels={"full": [0.01, 0.005, 0.0025], "quick": [0.01]}, knob_of=lambda cell: cell / L0,
@@ -187,12 +198,13 @@ def main(argv=None):
     ap.add_argument("--cell", type=float, default=0.005, help="MPM cell size (0.005 = L0/20)"
                     "; SPH: twice the particle spacing")
     ap.add_argument("--method", default="gimp,usl,apic",
-                    help='"shape,transfer,update" for MPM (gimp,usl,apic), or "sph"')
+                    help='"shape,transfer,update" for MPM (gimp,usl,apic), "sph" (on '
+                    'contact walls) or "sph_held" (on held particles)')
     ap.add_argument("--end", type=float, default=None, help="end time (5.6 sqrt(H0 / g))")
     args = ap.parse_args(argv)
     dist = Distributor(MPI.COMM_WORLD)
-    if args.method == "sph":
-        sim = column(dist, args.cell, args.a, end=args.end, method="sph")
+    if args.method in ("sph", "sph_held"):
+        sim = column(dist, args.cell, args.a, end=args.end, method=args.method)
     else:
         shape, transfer, update = args.method.split(",")
         sim = column(dist, args.cell, args.a, shape, transfer, update, end=args.end)

@@ -53,3 +53,18 @@ def test_column_collapse_comes_to_rest_and_converges_above_lube():
     assert 0.0 < fine["percentile"] - coarse["percentile"] < 0.25 * fine["percentile"]
     # above Lube's 2.4 by both measures at the finer cells
     assert fine["thickness"] > 1.1 * 2.4 and fine["percentile"] > 1.5 * 2.4
+
+
+def test_sph_column_on_a_coulomb_floor_of_contact_walls():
+    """The same column as an updated-Lagrangian SPH body (particles L0 / 20 apart, the count
+    of MPM at L0 / 10) on contact walls (kernels/sph/contact.py): the floor with the MPM
+    floor's Coulomb coefficient tan 30 deg, the wall behind x = 0 smooth. Measured: fronts
+    2.446 (thickness) and 3.050 (percentile), against MPM's 2.303 and 3.018 at the same
+    count; on the held sand floor used before (no slip at all) 2.85 and 3.41. Comes to
+    rest; mass exact."""
+    sim = column(Distributor(MPI.COMM_SELF), 0.01, method="sph")
+    r = collapse(sim, 0.01 / PPC)
+    assert r["percentile"] == pytest.approx(3.050, rel=0.02)
+    assert r["thickness"] == pytest.approx(2.446, rel=0.02)
+    assert r["ke_end"] < 1e-3 * r["ke_peak"]  # at rest
+    assert r["mass"] == r["mass0"]
