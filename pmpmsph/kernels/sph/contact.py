@@ -89,7 +89,7 @@ def wall_gaps(dim, n_query, start, index, x, mass, rho, method, mat, fluid, wall
 
 
 @njit
-def wall_contact(dim_tag, n, gaps, v, mass, rho, cs, wall_mu, body, dt, acc):
+def wall_contact(dim_tag, n, gaps, v, mass, rho, cs, wall_mu, body, clamped, dt, acc):
     """The contact walls' push and Coulomb friction on the owned SPH solid rows, added to
     `acc` after every other force (from `wall_gaps`: the distance g of row s to the
     nearest wall cell, the direction n from it to s, the wall row w).
@@ -110,12 +110,16 @@ def wall_contact(dim_tag, n, gaps, v, mass, rho, cs, wall_mu, body, dt, acc):
     so a row sticks (its tangential velocity brought to the wall's within the step) while
     the force that would move it stays inside mu f, and slides against a friction of mu f
     otherwise. The trial velocity is the one the coming kicks reach (dt acc_s added);
-    dt <= 0 (the kernels' warm-up) gives no friction."""
+    dt <= 0 (the kernels' warm-up) gives no friction. Rows held by a mirror clamp
+    (`clamped`, empty without) take no contact: their clamp holds them, and their forces
+    are handed to the free rows they mirror (as `sph_rates` leaves other materials'
+    pushes out of them)."""
     dim = len(dim_tag)
+    with_clamped = clamped.shape[0] > 0
     u = np.zeros(3)
     for s in range(n):
         w = int(gaps[s, 4])
-        if w < 0:
+        if w < 0 or (with_clamped and clamped[s]):
             continue
         spacing = (mass[s] / rho[s]) ** (1.0 / dim)
         overlap = 0.5 * spacing - gaps[s, 0]

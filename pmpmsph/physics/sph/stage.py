@@ -54,6 +54,9 @@ from .integrators import SPH_INTEGRATORS
 from .mirror_clamp import MirrorClamps
 from ...timing import Timers
 
+#: no rows held by mirror clamps (`wall_contact` without clamps)
+_NO_HELD = np.zeros(0, np.bool_)
+
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
 #: may stray this far past their slab face before they migrate (`MigrationSchedule`)
 HALO_MARGIN = 0.5
@@ -550,7 +553,8 @@ class SPHStage:
                           self.wall_mu, p.with_halo("body"), self._gaps)
                 wall_contact(self.dim_tag, n, self._gaps, p.with_halo("v"),
                              p.with_halo("mass"), rho, p.with_halo("cs"), self.wall_mu,
-                             p.with_halo("body"), self.dt, p.with_halo("acc"))
+                             p.with_halo("body"), _NO_HELD if self._mirror is None
+                             else self._mirror.held_rows(), self.dt, p.with_halo("acc"))
         if self._mirror is not None:  # the ghosts' forces to their partners
             self._mirror.hand_back(p["acc"], self.gravity[: self.dim], self.spec.damping)
         if self.constraint is not None:
