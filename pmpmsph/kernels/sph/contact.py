@@ -1,7 +1,7 @@
 """Contact walls: dummy wall bodies that declare a Coulomb coefficient (`[[bodies]]
-friction`, 0 for a smooth wall) hold the SPH solids on them by a unilateral penalty contact
-along the wall's own normal, and brake them by Coulomb's law (issue 21, item 2: the rough
-walls granular flows need). Part of the SPH kernels (`kernels.sph.rates`).
+friction`, 0 for a smooth wall) hold the SPH solids on them by a unilateral penalty on
+each solid row's overlap with the wall's surface, and brake them by Coulomb's law (issue 21,
+item 2: the rough walls granular flows need). Part of the SPH kernels (`kernels.sph.rates`).
 
 Why not the plain dummy wall: a solid meets that wall through the pair forces of its mean
 pressure and the artificial viscosity of the pairs, along particle-centre lines over a
@@ -12,7 +12,7 @@ kinematics to the wall instead holds the block, but is bilateral (the wall then 
 it glued an SPH plate to the side walls over its clamps, and a braked block rocked until
 the friction took 3.6 times its weight as load); clamped to compression, that kinematic
 contact ratcheted a block off a side wall. A penalty on the overlap is a function of the
-positions alone: it pushes only, and what it stores it gives back. The overlap is measured
+positions alone (its damping aside): it pushes only, and cannot ratchet. The overlap is measured
 to the wall's surface, the union of its particles' lattice cells, not to each wall
 particle's plane: a plane per particle needs a normal per particle, and at a wall's corners
 and ends those tilt, so a block standing in a corner overlapped them by a tenth of a
