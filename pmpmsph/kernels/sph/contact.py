@@ -27,32 +27,45 @@ from ...jit import njit
 CONTACT_DAMPING = 1.0
 
 
+@njit(inline="always")
+def contact_pair(a, b, n_query, method, mat, fluid, wall_mu, body):
+    """The SPH solid row of the pair (a, b) when the pair is an SPH solid and a contact wall
+    (a wall row of a body with wall_mu >= 0), the solid an owned row (< n_query); else -1.
+    The wall row is then a + b minus it. Such pairs take the contact of this module and are
+    skipped in `sph_rates`."""
+    if method[a] == SPH and method[b] == WALL and not fluid[mat[a]]:
+        return a if wall_mu[body[b]] >= 0.0 else -1
+    if b < n_query and method[b] == SPH and method[a] == WALL and not fluid[mat[b]]:
+        return b if wall_mu[body[a]] >= 0.0 else -1
+    return -1
+
+
 @njit
-def _box_gap(dim, x, s, w, half, out):
+def _box_gap(dim, x, s, w, half, direction):
     """Distance from row s's centre to the axis-aligned cell of half-width `half` around
-    wall row w, and the unit direction from the cell's nearest point to s (from the cell's
-    centre when s is inside it), into out[1:4]; returns the distance."""
+    wall row w; the unit direction from the cell's nearest point to s (from the cell's
+    centre when s is inside it) into `direction`."""
     dist2 = 0.0
     for d in range(3):
-        out[1 + d] = 0.0
+        direction[d] = 0.0
     for d in range(dim):
         e = x[s, d] - x[w, d]
         q = abs(e) - half
         if q > 0.0:
-            out[1 + d] = q if e > 0.0 else -q
+            direction[d] = q if e > 0.0 else -q
             dist2 += q * q
     if dist2 > 0.0:
         dist = np.sqrt(dist2)
         for d in range(dim):
-            out[1 + d] /= dist
+            direction[d] /= dist
         return dist
     size = 0.0
     for d in range(dim):
-        out[1 + d] = x[s, d] - x[w, d]
-        size += out[1 + d] ** 2
+        direction[d] = x[s, d] - x[w, d]
+        size += direction[d] ** 2
     size = np.sqrt(size)
     for d in range(dim):
-        out[1 + d] = out[1 + d] / size if size > 0.0 else 0.0
+        direction[d] = direction[d] / size if size > 0.0 else 0.0
     return 0.0
 
 
@@ -64,27 +77,23 @@ def wall_gaps(dim, n_query, start, index, x, mass, rho, method, mat, fluid, wall
     cube of the wall row's own spacing V_w^(1/d) around it), into gaps[s] = (distance,
     unit direction from the nearest point to s (3), the wall row); distance inf and row -1
     without. Over half neighbour lists: a pair is met once, in either row's list."""
-    cell = np.zeros(4)
+    direction = np.zeros(3)
     for s in range(n_query):
         gaps[s, 0] = np.inf
         gaps[s, 4] = -1.0
     for a in range(n_query):
         for k in range(start[a], start[a + 1]):
             b = index[k]
-            if method[a] == SPH and method[b] == WALL and not fluid[mat[a]]:
-                s, w = a, b
-            elif b < n_query and method[b] == SPH and method[a] == WALL and not fluid[mat[b]]:
-                s, w = b, a
-            else:
+            s = contact_pair(a, b, n_query, method, mat, fluid, wall_mu, body)
+            if s < 0:
                 continue
-            if wall_mu[body[w]] < 0.0:
-                continue
+            w = a + b - s
             half = 0.5 * (mass[w] / rho[w]) ** (1.0 / dim)
-            dist = _box_gap(dim, x, s, w, half, cell)
+            dist = _box_gap(dim, x, s, w, half, direction)
             if dist < gaps[s, 0]:
                 gaps[s, 0] = dist
                 for d in range(3):
-                    gaps[s, 1 + d] = cell[1 + d]
+                    gaps[s, 1 + d] = direction[d]
                 gaps[s, 4] = w
 
 

@@ -18,6 +18,7 @@ import numpy as np
 from ...jit import njit
 from ...codes import MPM, SPH, WALL
 from .kernel_functions import kernel_dwdr, kernel_w
+from .contact import contact_pair
 from .liu import liu_gradient
 
 
@@ -240,11 +241,9 @@ def sph_rates(smoothing, pairs, rows, options, terms, out):
             if r2 >= h4 or r2 == 0.0:
                 continue
             r = np.sqrt(r2)
-            if with_contact and (  # a contact wall and an SPH solid: not here (docstring)
-                    (upd_a and method[b] == WALL and not fluid[mat_a]
-                     and wall_mu[body[b]] >= 0.0)
-                    or (upd_b and method[a] == WALL and not fluid[mat[b]]
-                        and wall_mu[body[a]] >= 0.0)):
+            # a contact wall and an SPH solid: not here (docstring)
+            if with_contact and contact_pair(a, b, n_query, method, mat, fluid, wall_mu,
+                                             body) >= 0:
                 continue
             fr = kernel_dwdr(kern, dim, r, h) / r
             g0 = fr * xab0

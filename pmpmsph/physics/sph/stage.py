@@ -25,8 +25,7 @@ import numpy as np
 from ...codes import SPH
 from ...kernels.neighbours import moved_beyond, neighbour_lists
 from ...kernels.sph.rates import sph_rates
-from ...kernels.sph.contact import wall_contact, wall_gaps
-from ...kernels.sph.views import (NO_CONTACT, pair_lists, pair_rows, rate_options,
+from ...kernels.sph.views import (pair_lists, pair_rows, rate_options,
                                   rate_terms, rates, shift_fields, smoothing_of, sph_state)
 from ...kernels.sph.stress import pair_stress, sound_speeds, sph_stress, sync_ghost_velocity
 from ...kernels.sph.artificial_stress import artificial_stress
@@ -43,7 +42,6 @@ from ...kernels.sph.integrate import (
     max_signal,
 )
 from ...kernels.sph.kernel_functions import SUPPORT, kernel_w
-from ...kernels.sph.walls import mirror_pressure, wall_state
 from ...materials.dispatch import material_tag
 from ...parallel.decomposition import wrap_axis
 from ...parallel.particle_halo import ParticleHalo
@@ -52,10 +50,8 @@ from ..hydrostatic import fluid_columns
 from ..scratch import rows_at_least
 from .integrators import SPH_INTEGRATORS
 from .mirror_clamp import MirrorClamps
+from .wall_terms import WallTerms
 from ...timing import Timers
-
-#: no rows held by mirror clamps (`wall_contact` without clamps)
-_NO_HELD = np.zeros(0, np.bool_)
 
 #: extra halo width beyond the kernel support and the skin, in units of h: owned particles
 #: may stray this far past their slab face before they migrate (`MigrationSchedule`)
@@ -77,19 +73,6 @@ def diffusing_fluids(case, ignore_delta=False):
     return (case.sph.formulation == "updated"
             and (ignore_delta or case.sph.density_diffusion > 0.0)
             and any(not b.wall and case.materials[b.material].fluid
-                    for b in case.bodies))
-
-
-def fluid_meets_solid(case):
-    """Whether an SPH fluid (a Tait body, not a wall) can meet a solid of another material in
-    the SPH sums (an SPH solid or wall, or an MPM body in a coupled scene): the mirror pair of
-    `kernels.sph.rates.sph_rates`, whose solid rows then carry the fluid pressure `pw`."""
-    def fluid(b):
-        return case.materials[b.material].fluid
-
-    return (case.sph.formulation == "updated"
-            and any(b.method == "sph" and not b.wall and fluid(b) for b in case.bodies)
-            and any(not fluid(b) and (b.method == "sph" or case.coupled)
                     for b in case.bodies))
 
 
@@ -144,7 +127,6 @@ class SPHStage:
         self.set_decomposition(decomposition)
         self.use_as = spec.artificial_stress > 0.0
         self.w_dp = kernel_w(self.kern, self.dim, spec.spacing, self.h) if self.use_as else 1.0
-        self.no_slip = spec.wall_no_slip
         # kernel gradient correction (updated-Lagrangian: opt in, default off)
         # (the total formulation corrects its own kernel: TLSPHStage, kernel_correction)
         self.corr = bool(spec.correction) and spec.formulation == "updated"
@@ -174,17 +156,8 @@ class SPHStage:
         self.split = self.dcoef is not None and spec.density_diffusion_model == "fourtakas"
         # particle shifting: A h of D = A h |v| dt (0: off)
         self.shift_coef = spec.shifting * self.h if shifting_fluids(case) else 0.0
-        # contact walls (kernels/sph/contact.py): the Coulomb coefficient of each body (< 0:
-        # a plain dummy wall, or not a wall), the solid rows' gaps to them (scratch); the
-        # friction's stick limit needs the step's dt (`step`)
-        self.wall_mu = np.array([-1.0 if b.friction is None else b.friction
-                                 for b in case.bodies])
-        self.contact = bool(np.any(self.wall_mu >= 0.0))
-        self._gaps = np.zeros((0, 5))
-        self.dt = 0.0
-        # walls that move with their velocity (bodies[].moving), by body index
-        self.moving_walls = np.array([i for i, b in enumerate(case.bodies) if b.moving],
-                                     np.int32)
+        # walls, and solids a fluid meets (physics/sph/wall_terms.py)
+        self.walls = WallTerms(case, (self.mtypes, self.mparams), self.fluid, self.gravity)
         self.lo = np.array(case.domain[0], float)
         self.hi = np.array(case.domain[1], float)
         self.start = np.zeros(1, np.int64)
@@ -207,12 +180,7 @@ class SPHStage:
             FieldSpec("cs", ()),  # migrates: the CFL signal of a row that just moved rank
             FieldSpec("S", (6,), migrate=False),
         ]
-        if any(b.wall for b in case.bodies):
-            out.append(FieldSpec("vg", ("dim",), migrate=False, halo=True))
-            # the walls' pressure towards SPH solids (kernels/sph/walls.py wall_state)
-            out.append(FieldSpec("pws", (), migrate=False, halo=True))
-        if fluid_meets_solid(case):  # the fluid pressure at solid rows (mirror pairs)
-            out.append(FieldSpec("pw", (), migrate=False, halo=True))
+        out += WallTerms.fields(case)
         if case.sph.artificial_stress > 0:
             out.append(FieldSpec("R", (6,), migrate=False))
         if case.sph.correction and case.sph.correction_kind == "liu":
@@ -353,12 +321,11 @@ class SPHStage:
     def _terms(self, R, pw, clamped):
         """The optional terms of `sph_rates` this scene has (`rate_terms`)."""
         dcoef, gradrho = self._diffusion()
+        pws, contact = self.walls.rate_terms(self.p)
         return rate_terms(R=R, as_n=self.spec.artificial_stress_exponent,
                           w_dp=self.w_dp, B=self._B(), liu=self._liu(), dcoef=dcoef,
                           gradrho=gradrho, morris_mu=self.morris_mu, pw=pw, clamped=clamped,
-                          pws=self.p.with_halo("pws") if "pws" in self.p else None,
-                          contact=(self.wall_mu, self.p.with_halo("body")) if self.contact
-                          else NO_CONTACT)
+                          pws=pws, contact=contact)
 
     def _B(self):
         return self.p.with_halo("B") if self.corr and not self.liu else None
@@ -492,28 +459,10 @@ class SPHStage:
         self._place_ghosts()
         # the wall velocities and the solids' mirrored pressures are derived below from the
         # refreshed rows and then refreshed themselves: not sent twice
-        self._update_neighbours(skip=("vg", "pws", "pw"))
+        self._update_neighbours(skip=WallTerms.DERIVED)
         n, nt = p.n_owned, p.n_total
-        x = p.with_halo("x")
-        if "vg" in p:
-            with t.phase("sph"):
-                sync_ghost_velocity(nt, p.with_halo("method"), p.with_halo("v"),
-                                    p.with_halo("vg"))
-                wall_state(self._smoothing(), self._pairs(n), x, p.with_halo("v"),
-                           p.with_halo("rho"), p.with_halo("sigma"), p.with_halo("method"),
-                           p.with_halo("mat"), (self.mtypes, self.mparams), self.fluid,
-                           self.gravity, self.no_slip, p.with_halo("vg"), p.with_halo("pws"))
-        if "pw" in p:  # (after the walls: a wall of a solid material is a solid row too)
-            with t.phase("sph"):
-                mirror_pressure(self._smoothing(), self._pairs(n), x, p.with_halo("rho"),
-                                p.with_halo("sigma"), p.with_halo("method"),
-                                p.with_halo("mat"), self.fluid,
-                                self.gravity, p.with_halo("pw"))
-        derived = ((("rho", "sigma", "vg", "pws") if "vg" in p else ())
-                   + (("pw",) if "pw" in p else ()))
-        if derived and self.halo_enabled:
-            with t.phase("halo"):
-                self.halo.refresh(derived)
+        self.walls.derive(p, self._smoothing(), self._pairs(n),
+                          self.halo if self.halo_enabled else None, t)
         self._correction(halo=True)
         self._density_gradient()
         self._shifting_state()
@@ -546,15 +495,9 @@ class SPHStage:
                                  p.with_halo("u"), p.with_halo("X0"), p.with_halo("Fh"),
                                  p.with_halo("mass"), rho, p.with_halo("cs"), self.hourglass,
                                  p.with_halo("acc"))
-            if self.contact:  # after every other force: the friction bounds their sum
-                self._gaps = rows_at_least(self._gaps, n)
-                wall_gaps(self.dim, n, self.start, self.index, x, p.with_halo("mass"), rho,
-                          p.with_halo("method"), p.with_halo("mat"), self.fluid,
-                          self.wall_mu, p.with_halo("body"), self._gaps)
-                wall_contact(self.dim_tag, n, self._gaps, p.with_halo("v"),
-                             p.with_halo("mass"), rho, p.with_halo("cs"), self.wall_mu,
-                             p.with_halo("body"), _NO_HELD if self._mirror is None
-                             else self._mirror.held_rows(), self.dt, p.with_halo("acc"))
+            # after every other force: the friction bounds their sum
+            self.walls.contact(p, n, self.start, self.index,
+                               None if self._mirror is None else self._mirror.held_rows())
         if self._mirror is not None:  # the ghosts' forces to their partners
             self._mirror.hand_back(p["acc"], self.gravity[: self.dim], self.spec.damping)
         if self.constraint is not None:
@@ -669,7 +612,7 @@ class SPHStage:
         n = p.n_owned
         if not self.evaluated:
             self.initialise()
-        self.dt = dt
+        self.walls.dt = dt
         m0 = self._mstate(n).copy()
         bad = self.integrator.updated(self, dt, m0, kicked)
         if self.shift_coef > 0.0 and bad < 0:
@@ -677,9 +620,7 @@ class SPHStage:
                 shift_positions(self.dim_tag, n, p["method"], p["mat"], self.fluid, p["x"],
                                 p["v"], p["rho"], self._gradrho_owned(), self._shifting(),
                                 self.shift_coef, dt, self.spec.spacing)
-        if len(self.moving_walls):  # prescribed motion: x += dt v_wall, after the fluid's
-            moving = np.isin(p["body"][:n], self.moving_walls)
-            p["x"][:n][moving] += dt * p["v"][:n][moving]
+        self.walls.move(p, n, dt)  # prescribed motion, after the fluid's
         for axis in self.case.periodic:  # back into the period (images do the rest)
             wrap_axis(p["x"][:n], axis, self.lo[axis], self.hi[axis] - self.lo[axis])
         if bad < 0:
