@@ -16,6 +16,10 @@ started in all.
 A plain dummy floor (no `friction`) brakes the same block at 30 deg to 1.9 m/s^2 instead
 of 4.9 (the artificial viscosity of the pairs it slides over), holds it at 10 deg, and
 lets it sink 5.5 mm, more than a spacing (docs/sph.md, "Walls and solids").
+In 3D (`incline_3d`: a block 0.04 x 0.02 x 0.02, 8 x 4 x 4 particles, on two rows of wall
+particles, the cells of the wall rows being cubes) the same holds: at 30 deg, mu = 0.3
+within 1.7e-8 of g sin theta and mu = 0 within 5e-16, the lowest row within 0.0003
+spacings of where it started.
 """
 import numpy as np
 import pytest
@@ -72,10 +76,55 @@ cfl = 0.3
 """
 
 
-def slide(theta, mu):
+def incline_3d(theta, mu):
+    """`incline` in 3D: a smaller block on a floor of two rows (module doc)."""
+    th = np.radians(theta)
+    return f"""
+name = "incline_3d"
+dimension = 3
+gravity = [{G * np.sin(th)}, {-G * np.cos(th)}, 0.0]
+[domain]
+min = [-0.1, -0.1, -0.05]
+max = [0.4, 0.1, 0.09]
+[sph]
+kernel = "wendland"
+[materials.floor]
+model = "tait"
+rho = 1000.0
+kappa = 1.0e4
+[materials.block]
+model = "neo_hookean"
+E = 2.0e6
+nu = 0.3
+rho = 2000.0
+[[bodies]]
+name = "block"
+method = "sph"
+material = "block"
+shape = "box"
+min = [0.02, 0.0, 0.01]
+max = [0.06, 0.02, 0.03]
+spacing = {DP}
+[[bodies]]
+name = "floor"
+method = "sph"
+material = "floor"
+wall = true
+friction = {mu}
+shape = "box"
+min = [-0.02, {-2 * DP}, -0.01]
+max = [0.24, 0.0, 0.05]
+spacing = {DP}
+[time]
+end = 0.2
+cfl = 0.3
+"""
+
+
+def slide(theta, mu, scene=incline):
     """(acceleration fitted along the floor, displacement along it, the lowest row's
-    height change) of the block's centre of mass."""
-    case = load_case_text(incline(theta, mu))
+    height change) of the block's centre of mass; `scene` (theta, mu) -> the case text."""
+    case = load_case_text(scene(theta, mu))
     sim = Simulation(case)
     p = sim.particles
     block = p["body"][: p.n_owned] == 0
@@ -85,7 +134,7 @@ def slide(theta, mu):
     times, speeds = [], []
     while sim.time < case.time.end - 1e-12:
         sim.step()
-        if sim.time > 0.1 and sim.step_count % 20 == 0:
+        if sim.time > case.time.end / 3 and sim.step_count % 20 == 0:
             n = p.n_owned
             block = p["body"][:n] == 0
             times.append(sim.time)
@@ -109,4 +158,12 @@ def test_block_sticks_below_friction_angle():
     acc, moved, sink = slide(10.0, 0.3)  # tan 10 deg = 0.18 < 0.3
     assert abs(acc) < 1e-4 * G
     assert abs(moved) < 0.01 * DP  # 20 um: the block's elastic settling
+    assert abs(sink) < 0.01 * DP
+
+
+def test_block_slides_by_coulomb_in_3d():
+    th = np.radians(30.0)
+    acc, _, sink = slide(30.0, 0.3, scene=incline_3d)
+    reference = G * (np.sin(th) - 0.3 * np.cos(th))
+    assert abs(acc - reference) < 1e-3 * G * np.sin(th), (acc, reference)
     assert abs(sink) < 0.01 * DP
