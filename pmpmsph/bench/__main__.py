@@ -111,6 +111,9 @@ def main(argv: "list[str] | None" = None) -> None:
     pl.add_argument("--hourglass", type=float, default=None,
                     help="the SPH plate's [sph] hourglass (default: 0 for the TL-SPH plate, "
                     "whose mirror clamps need none; 2, quadratic fit, for the UL-SPH plate)")
+    pl.add_argument("--water-ratio", type=float, default=1.0,
+                    help="the water's spacing over the plate's (an SPH water then takes h = "
+                    "1.3 of its own spacing; MPM water points per cell fall with it)")
     pl.add_argument("--out", default="bench_results")
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "io-worker":

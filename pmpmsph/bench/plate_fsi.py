@@ -17,7 +17,8 @@ SPH plate, held by a prescribed zero velocity beyond the span, under MPM water) 
 (an updated-Lagrangian SPH plate under SPH water). The side walls stand on the clamps. E is
 chosen so that w / L = 1 % (`plate_modulus`). Both bodies are damped
 (a -= alpha v, which leaves the static state alone) so that the plate settles within a few
-of its periods, 2 pi sqrt(w / g) = 0.13 s. `python -m pmpmsph.bench plate` runs it.
+of its periods, 2 pi sqrt(w / g) = 0.13 s. `python -m pmpmsph.bench plate [--water-ratio R]`
+runs it (R: the water's spacing over the plate's).
 """
 import math
 import time
@@ -58,15 +59,18 @@ def plate_modulus(span, thickness, q, nu, ratio=0.01):
 def water_on_plate(combo: str = "mpm_plate", spacing: float = 0.005, span: float = 0.4,
                    thickness: float = 0.02, depth: float = 0.1, rho_plate: float = 7800.0,
                    nu: float = 0.3, damping: float = 40.0, end: float = 0.6,
-                   clamp_cells: int = 2, hourglass: "float | None" = None
-                   ) -> "tuple[Scene, dict]":
-    """The scene, and the reference dict (q, E, w_bending, w_shear). `hourglass`: the SPH
-    plate's `[sph] hourglass` (None: 0 for the total-Lagrangian plate, which needs none with
+                   clamp_cells: int = 2, hourglass: "float | None" = None,
+                   water_spacing: "float | None" = None) -> "tuple[Scene, dict]":
+    """The scene, and the reference dict (q, E, w_bending, w_shear). `spacing` is the
+    plate's particle spacing (the grid's cells are two of them), `water_spacing` the water's
+    and its walls' (None: the same; an SPH water takes h = 1.3 of its own). `hourglass`: the
+    SPH plate's `[sph] hourglass` (None: 0 for the total-Lagrangian plate, which needs none with
     mirror clamps, 2 with the quadratic fit for the updated one, whose columns pair up
     under SPH water without it; docs/plate.md)."""
     sp = spacing
+    wsp = spacing if water_spacing is None else water_spacing
     cell = 2.0 * sp
-    wall = 3 * sp
+    wall = 3 * wsp
     clamp = clamp_cells * cell
     q = load_per_length(depth, thickness, rho_plate)
     E = plate_modulus(span, thickness, q, nu)
@@ -81,7 +85,7 @@ def water_on_plate(combo: str = "mpm_plate", spacing: float = 0.005, span: float
                                   "mpm_mpm": ("mpm", "mpm"), "sph_sph": ("sph", "sph")}[combo]
     mpm = dict(shape="gimp", transfer="musl", damping=damping)
     if fluid_method == "sph":
-        sph = dict(h_factor=1.3, integrator="predictor_corrector", walls="slip",
+        sph = dict(h=1.3 * wsp, integrator="predictor_corrector", walls="slip",
                    damping=damping, hydrostatic=True, viscosity=dict(alpha=0.1, beta=0.0))
         if plate_method == "sph":  # an updated-Lagrangian plate beside the water: Liu's
             # corrected kernel (it reads bending, Bonet-Lok's does not), mirror clamps and the
@@ -104,14 +108,14 @@ def water_on_plate(combo: str = "mpm_plate", spacing: float = 0.005, span: float
     sc.material("plate", model="neo_hookean", E=E, nu=nu, rho=rho_plate)
     sc.material("water", model="tait", rho=RHO_WATER, kappa=kappa, gamma=7.0, mu=0.0)
     sc.body(name="water", method=fluid_method, material="water", shape="box",
-            min=[0.0, thickness], max=[span, thickness + depth], spacing=sp)
+            min=[0.0, thickness], max=[span, thickness + depth], spacing=wsp)
     sc.body(name="plate", method=plate_method, material="plate", shape="box",
             min=[-clamp, 0.0], max=[span + clamp, thickness], spacing=sp)
     eps = 1e-3 * cell
     if fluid_method == "sph":
         for name, lo, hi in (("left", -wall, 0.0), ("right", span, span + wall)):
             sc.body(name=name, method="sph", wall=True, material="water", shape="box",
-                    min=[lo, thickness], max=[hi, top], spacing=sp)
+                    min=[lo, thickness], max=[hi, top], spacing=wsp)
     if fluid_method == "sph" and plate_method == "mpm":
         for lo, hi in ((x0 - cell, eps), (span - eps, x0 + (nx + 1) * cell)):
             sc.data.setdefault("boundaries", []).append(
@@ -209,7 +213,8 @@ def run(args: Namespace) -> int:
             t0 = time.perf_counter()
             try:
                 t, w, ref = plate_run(combo, spacing=sp, end=args.end,
-                                      hourglass=args.hourglass)
+                                      hourglass=args.hourglass,
+                                      water_spacing=args.water_ratio * sp)
                 mean, spread = settled(t, w)
                 failure = ""
             except Exception as exc:  # a failed run is a row of the table, not the end
@@ -219,6 +224,7 @@ def run(args: Namespace) -> int:
             r = dict(combo=combo, spacing=sp, w=-mean, w_bending=wb, w_timoshenko=wb + ws,
                      error=-mean / wb - 1.0, error_timoshenko=-mean / (wb + ws) - 1.0,
                      spread=spread, wall=time.perf_counter() - t0, failure=failure)
+            r["water_spacing"] = args.water_ratio * sp
             rows.append(r)
             print(f"{combo:<12}{sp:>9g}{1e3 * r['w']:>9.4f}{1e3 * wb:>9.4f}{r['error']:>+9.2%}"
                   f"{1e3 * (wb + ws):>9.4f}{r['error_timoshenko']:>+9.2%}{spread:>8.3f}"
