@@ -16,7 +16,7 @@ started in all.
 A plain dummy floor (no `friction`) brakes the same block at 30 deg to 1.9 m/s^2 instead
 of 4.9 (the artificial viscosity of the pairs it slides over), holds it at 10 deg, and
 lets it sink 5.5 mm, more than a spacing (docs/sph.md, "Walls and solids").
-In 3D (`incline_3d`: a block 0.04 x 0.02 x 0.02, 8 x 4 x 4 particles, on two rows of wall
+In 3D (`incline(..., dim=3)`: a block 0.04 x 0.02 x 0.02, 8 x 4 x 4 particles, on two rows of wall
 particles, the cells of the wall rows being cubes) the same holds: at 30 deg, mu = 0.3
 within 1.7e-8 of g sin theta and mu = 0 within 5e-16, the lowest row within 0.0003
 spacings of where it started.
@@ -30,17 +30,28 @@ from pmpmsph.simulation import Simulation
 G, DP = 9.81, 0.005
 
 
-def incline(theta, mu):
+#: per dimension: the domain, the block's box, the floor's box (rows below y = 0), the end
+GEOMETRY = {
+    2: ([-0.1, -0.1], [0.8, 0.2], [0.05, 0.0], [0.15, 0.05], [-0.05, -4 * DP], [0.75, 0.0],
+        0.3),
+    3: ([-0.1, -0.1, -0.05], [0.4, 0.1, 0.09], [0.02, 0.0, 0.01], [0.06, 0.02, 0.03],
+        [-0.02, -2 * DP, -0.01], [0.24, 0.0, 0.05], 0.2),
+}
+
+
+def incline(theta, mu, dim=2):
     """The scene's text: the floor's Coulomb coefficient `mu`, gravity tilted by `theta`
-    degrees towards +x."""
+    degrees towards +x; in 3D a smaller block on a floor of two rows (module doc)."""
     th = np.radians(theta)
+    lo, hi, block_lo, block_hi, floor_lo, floor_hi, end = GEOMETRY[dim]
+    gravity = [float(G * np.sin(th)), float(-G * np.cos(th)), 0.0][:dim]
     return f"""
 name = "incline"
-dimension = 2
-gravity = [{G * np.sin(th)}, {-G * np.cos(th)}]
+dimension = {dim}
+gravity = {gravity}
 [domain]
-min = [-0.1, -0.1]
-max = [0.8, 0.2]
+min = {lo}
+max = {hi}
 [sph]
 kernel = "wendland"
 [materials.floor]
@@ -57,8 +68,8 @@ name = "block"
 method = "sph"
 material = "block"
 shape = "box"
-min = [0.05, 0.0]
-max = [0.15, 0.05]
+min = {block_lo}
+max = {block_hi}
 spacing = {DP}
 [[bodies]]
 name = "floor"
@@ -67,64 +78,19 @@ material = "floor"
 wall = true
 friction = {mu}
 shape = "box"
-min = [-0.05, {-4 * DP}]
-max = [0.75, 0.0]
+min = {floor_lo}
+max = {floor_hi}
 spacing = {DP}
 [time]
-end = 0.3
+end = {end}
 cfl = 0.3
 """
 
 
-def incline_3d(theta, mu):
-    """`incline` in 3D: a smaller block on a floor of two rows (module doc)."""
-    th = np.radians(theta)
-    return f"""
-name = "incline_3d"
-dimension = 3
-gravity = [{G * np.sin(th)}, {-G * np.cos(th)}, 0.0]
-[domain]
-min = [-0.1, -0.1, -0.05]
-max = [0.4, 0.1, 0.09]
-[sph]
-kernel = "wendland"
-[materials.floor]
-model = "tait"
-rho = 1000.0
-kappa = 1.0e4
-[materials.block]
-model = "neo_hookean"
-E = 2.0e6
-nu = 0.3
-rho = 2000.0
-[[bodies]]
-name = "block"
-method = "sph"
-material = "block"
-shape = "box"
-min = [0.02, 0.0, 0.01]
-max = [0.06, 0.02, 0.03]
-spacing = {DP}
-[[bodies]]
-name = "floor"
-method = "sph"
-material = "floor"
-wall = true
-friction = {mu}
-shape = "box"
-min = [-0.02, {-2 * DP}, -0.01]
-max = [0.24, 0.0, 0.05]
-spacing = {DP}
-[time]
-end = 0.2
-cfl = 0.3
-"""
-
-
-def slide(theta, mu, scene=incline):
+def slide(theta, mu, dim=2):
     """(acceleration fitted along the floor, displacement along it, the lowest row's
-    height change) of the block's centre of mass; `scene` (theta, mu) -> the case text."""
-    case = load_case_text(scene(theta, mu))
+    height change) of the block's centre of mass."""
+    case = load_case_text(incline(theta, mu, dim))
     sim = Simulation(case)
     p = sim.particles
     block = p["body"][: p.n_owned] == 0
@@ -163,7 +129,7 @@ def test_block_sticks_below_friction_angle():
 
 def test_block_slides_by_coulomb_in_3d():
     th = np.radians(30.0)
-    acc, _, sink = slide(30.0, 0.3, scene=incline_3d)
+    acc, _, sink = slide(30.0, 0.3, dim=3)
     reference = G * (np.sin(th) - 0.3 * np.cos(th))
     assert abs(acc - reference) < 1e-3 * G * np.sin(th), (acc, reference)
     assert abs(sink) < 0.01 * DP
