@@ -223,8 +223,8 @@ def run(args: Namespace) -> int:
             wb, ws = ref["w_bending"], ref["w_shear"]
             r = dict(combo=combo, spacing=sp, w=-mean, w_bending=wb, w_timoshenko=wb + ws,
                      error=-mean / wb - 1.0, error_timoshenko=-mean / (wb + ws) - 1.0,
-                     spread=spread, wall=time.perf_counter() - t0, failure=failure)
-            r["water_spacing"] = args.water_ratio * sp
+                     spread=spread, wall=time.perf_counter() - t0, failure=failure,
+                     water_spacing=args.water_ratio * sp)
             rows.append(r)
             print(f"{combo:<12}{sp:>9g}{1e3 * r['w']:>9.4f}{1e3 * wb:>9.4f}{r['error']:>+9.2%}"
                   f"{1e3 * (wb + ws):>9.4f}{r['error_timoshenko']:>+9.2%}{spread:>8.3f}"
