@@ -22,18 +22,14 @@ force, refreshes it in the halo: the rates then use corrected gradients (see `sp
 """
 import numpy as np
 
-from ...codes import SPH
 from ...kernels.neighbours import moved_beyond, neighbour_lists
 from ...kernels.sph.rates import sph_rates
 from ...kernels.sph.views import (pair_lists, pair_rows, rate_options,
                                   rate_terms, rates, shift_fields, smoothing_of, sph_state)
 from ...kernels.sph.stress import pair_stress, sound_speeds, sph_stress, sync_ghost_velocity
 from ...kernels.sph.artificial_stress import artificial_stress
-from ...kernels.sph.correction import correction_matrices
-from ...kernels.sph.liu import COEF, liu_coefficients
 from ...kernels.sph.density import density_gradient
 from ...kernels.sph.shifting import shift_positions, shifting_state
-from ...kernels.sph.hourglass_quadratic import HOURGLASS_FITS
 from ...kernels.sph.integrate import (
     add_scaled,
     advance,
@@ -48,7 +44,9 @@ from ...parallel.particle_halo import ParticleHalo
 from ...particles import FieldSpec
 from ..hydrostatic import fluid_columns
 from ..scratch import rows_at_least
+from .hourglass_control import HourglassControl
 from .integrators import SPH_INTEGRATORS
+from .kernel_correction import KernelCorrection
 from .mirror_clamp import MirrorClamps
 from .wall_terms import WallTerms
 from ...timing import Timers
@@ -127,24 +125,18 @@ class SPHStage:
         self.set_decomposition(decomposition)
         self.use_as = spec.artificial_stress > 0.0
         self.w_dp = kernel_w(self.kern, self.dim, spec.spacing, self.h) if self.use_as else 1.0
-        # kernel gradient correction (updated-Lagrangian: opt in, default off)
-        # (the total formulation corrects its own kernel: TLSPHStage, kernel_correction)
-        self.corr = bool(spec.correction) and spec.formulation == "updated"
-        self.corr_tag = (0,) if self.corr else ()
-        # Liu's corrected kernel (`correction = "liu"`) instead of Bonet & Lok's matrices
-        self.liu = self.corr and spec.correction_kind == "liu"
-        self._sums = np.zeros((0, 52))
-        # hourglass control of the solids (kernels/sph/hourglass.py; needs X0)
-        self.hourglass = spec.hourglass if spec.formulation == "updated" else 0.0
-        # its fit, linear or quadratic (kernels/sph/hourglass_quadratic.py)
-        fit = HOURGLASS_FITS[spec.hourglass_fit]
-        self._fit_pairs, self._fit, self._fit_forces = fit.pairs, fit.fit, fit.forces
-        self._control, self._control_of = None, None  # (`_control_pairs`)
         # per material: a fluid (Tait) meets a solid of another material through the mirror
         # pair of kernels/sph/rates.py's sph_rates
         self.fluid = np.array([m.fluid for m in mats], np.bool_)
-        self._M = np.zeros((0, 3, 3))
-        self._A = np.zeros((0,) + fit.scratch)
+        updated = spec.formulation == "updated"
+        # kernel gradient correction (physics/sph/kernel_correction.py; opt in, default
+        # off; the total formulation corrects its own kernel: TLSPHStage)
+        self.correction = (KernelCorrection(case, self.fluid)
+                           if spec.correction and updated else None)
+        # hourglass control of the solids (physics/sph/hourglass_control.py; needs X0)
+        self.hourglass = (HourglassControl(case, self.fluid)
+                          if spec.hourglass > 0.0 and updated else None)
+        self._M = np.zeros((0, 3, 3))  # moment matrices (scratch: delta-SPH, shifting)
         # delta-SPH: delta h c0 per material (c0 = sqrt(kappa gamma / rho0) of a Tait
         # fluid), 0 for the others; None when no fluid diffuses
         self.dcoef = None
@@ -183,10 +175,8 @@ class SPHStage:
         out += WallTerms.fields(case)
         if case.sph.artificial_stress > 0:
             out.append(FieldSpec("R", (6,), migrate=False))
-        if case.sph.correction and case.sph.correction_kind == "liu":
-            out.append(FieldSpec("liu", (COEF,), migrate=False))  # kernels/sph/liu.py
-        elif case.sph.correction:
-            out.append(FieldSpec("B", (3, 3), migrate=False, fill="identity"))
+        if case.sph.correction:
+            out += KernelCorrection.fields(case)
         if diffusing_fluids(case) and case.sph.density_diffusion_model == "antuono":
             # delta-SPH: renormalised density gradients
             out.append(FieldSpec("gradrho", (3,), migrate=False))
@@ -198,9 +188,7 @@ class SPHStage:
             # control's and the mirror clamps' (physics/sph/mirror_clamp.py)
             out.append(FieldSpec("X0", ("dim",), halo=True, output=True))
         if case.sph.hourglass > 0.0:
-            out += [FieldSpec("u", ("dim",), halo=True),  # x - X0, integrated (see there)
-                    FieldSpec("Fh", HOURGLASS_FITS[case.sph.hourglass_fit].coefficients,
-                              migrate=False, halo=True)]
+            out += HourglassControl.fields(case, displacement=True)
         if multi:
             out += [FieldSpec("x_n", ("dim",), migrate=False),
                     FieldSpec("v_n", ("dim",), migrate=False),
@@ -314,7 +302,8 @@ class SPHStage:
 
     def _options(self, want_force, want_L, want_fsi):
         spec = self.spec
-        return rate_options(self.corr_tag, self.fluid, self.gravity, spec.damping,
+        corr_tag = () if self.correction is None else KernelCorrection.TAG
+        return rate_options(corr_tag, self.fluid, self.gravity, spec.damping,
                             spec.av_alpha, spec.av_beta, want_force, want_L, want_fsi,
                             self.split)
 
@@ -322,52 +311,20 @@ class SPHStage:
         """The optional terms of `sph_rates` this scene has (`rate_terms`)."""
         dcoef, gradrho = self._diffusion()
         pws, contact = self.walls.rate_terms(self.p)
+        B, liu = (None, None) if self.correction is None else self.correction.terms(self.p)
         return rate_terms(R=R, as_n=self.spec.artificial_stress_exponent,
-                          w_dp=self.w_dp, B=self._B(), liu=self._liu(), dcoef=dcoef,
+                          w_dp=self.w_dp, B=B, liu=liu, dcoef=dcoef,
                           gradrho=gradrho, morris_mu=self.morris_mu, pw=pw, clamped=clamped,
                           pws=pws, contact=contact)
 
-    def _B(self):
-        return self.p.with_halo("B") if self.corr and not self.liu else None
-
-    def _liu(self):
-        return self.p.with_halo("liu") if self.liu else None
-
-    def _liu_rows(self, n):
-        """The owned rows that take Liu's correction: SPH solids. Fluid pairs keep the plain
-        gradient (with it, water under a plate broke up at the free surface's corners:
-        det F < 0 after 35,000 steps at spacing 0.005, docs/plate.md)."""
-        p = self.p
-        return (p["method"][:n] == SPH) & ~self.fluid[p["mat"][:n]]
-
     def _correction(self, halo):
-        """Kernel gradient correction B of the owned rows (and, with `halo`, refreshed in
-        the halo: the force needs B at both ends of a pair). No-op without the option."""
-        if not self.corr:
-            return
-        p = self.p
-        n = p.n_owned
-        if self.liu:
-            self._sums = rows_at_least(self._sums, n)
-            method = p.with_halo("method")
-            with self.timers.phase("sph"):
-                liu_coefficients(self._smoothing(), self._pairs(n), p.with_halo("x"),
-                                 p.with_halo("mass"), p.with_halo("rho"), method,
-                                 p.with_halo("mat"), self._liu_rows(n), self._sums,
-                                 p.with_halo("liu"))
-            if halo and self.halo_enabled:
-                with self.timers.phase("halo"):
-                    self.halo.refresh(("liu",))
-            return
-        self._M = rows_at_least(self._M, n)
-        with self.timers.phase("sph"):
-            correction_matrices(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
-                                p.with_halo("mass"), p.with_halo("rho"),
-                                p.with_halo("method"), self.start, self.index, self._M,
-                                p.with_halo("B"))
-        if halo and self.halo_enabled:
-            with self.timers.phase("halo"):
-                self.halo.refresh(("B",))
+        """The kernel gradient correction of the owned rows, with `halo` refreshed in the
+        halo (physics/sph/kernel_correction.py). No-op without the option."""
+        if self.correction is not None:
+            self.correction.compute(self.p, self._smoothing(), self._pairs(self.p.n_owned),
+                                    self.start, self.index,
+                                    self.halo if halo and self.halo_enabled else None,
+                                    self.timers)
 
     def set_constraint(self, prescribed):
         """Hold the prescribed velocities (physics/loads.py PrescribedVelocity) within each
@@ -389,36 +346,16 @@ class SPHStage:
             self._mirror.restore()
 
     def _hourglass_fit(self):
-        """The fitted deformation gradient Fh of the owned solid rows, refreshed in the halo
-        (the hourglass force needs it at both ends of a pair). No-op without the option."""
-        if self.hourglass == 0.0:
+        """The hourglass control's fit of the owned solid rows, refreshed in the halo
+        (physics/sph/hourglass_control.py). No-op without the option."""
+        if self.hourglass is None:
             return
         p = self.p
         n = p.n_owned
-        self._A = rows_at_least(self._A, n)
-        with self.timers.phase("sph"):
-            self._fit(self._smoothing(), self._pairs(n),
-                      self._control_pairs(n, self.start, self.index), p.with_halo("u"),
-                      p.with_halo("X0"), p.with_halo("mass"), p.with_halo("rho"),
-                      p.with_halo("method"), p.with_halo("mat"), self.fluid, self._A,
-                      p.with_halo("Fh"))
-        if self.halo_enabled:
-            with self.timers.phase("halo"):
-                self.halo.refresh(("Fh",))
-
-    def _control_pairs(self, n, start, index):
-        """The hourglass control's pairs and weights over these half lists
-        (`HourglassFit.pairs`). They depend on the reference positions and the lists only,
-        so they are made once per list (a rebuilt list is a new array) and not twice an
-        evaluation (the fit and the forces each made them: 40 % of the control's cost)."""
-        if self._control_of is None or self._control_of[0] is not start \
-                or self._control_of[1] != n:
-            p = self.p
-            self._control = self._fit_pairs(self.dim, self.kern, self.h, n, p.with_halo("X0"),
-                                            p.with_halo("method"), p.with_halo("mat"),
-                                            self.fluid, start, index)
-            self._control_of = (start, n)
-        return self._control
+        self.hourglass.fit(p, self._smoothing(), self._pairs(n),
+                           self.hourglass.control_pairs(p, n, self.start, self.index),
+                           p.with_halo("u"), self.halo if self.halo_enabled else None,
+                           self.timers)
 
     def _need_rebuild(self):
         """Collective: rebuild if the rows changed or a particle moved half the skin."""
@@ -489,12 +426,11 @@ class SPHStage:
                       rates(p.with_halo("acc"), p.with_halo("drho"), p.with_halo("L"),
                             p.with_halo("fsi") if "fsi" in p else None,
                             p.with_halo("fcpl") if "fcpl" in p else None))
-            if self.hourglass > 0.0:
-                self._fit_forces(self._smoothing(), self._pairs(n),
-                                 self._control_pairs(n, self.start, self.index),
-                                 p.with_halo("u"), p.with_halo("X0"), p.with_halo("Fh"),
-                                 p.with_halo("mass"), rho, p.with_halo("cs"), self.hourglass,
-                                 p.with_halo("acc"))
+            if self.hourglass is not None:
+                self.hourglass.forces(p, self._smoothing(), self._pairs(n),
+                                      self.hourglass.control_pairs(p, n, self.start,
+                                                                   self.index),
+                                      p.with_halo("u"), p.with_halo("cs"), p.with_halo("acc"))
             # after every other force: the friction bounds their sum
             self.walls.contact(p, n, self.start, self.index,
                                None if self._mirror is None else self._mirror.held_rows())
@@ -592,8 +528,8 @@ class SPHStage:
         u += dt v with them (kernels/sph/hourglass.py: u keeps its own rounding)."""
         p = self.p
         add_scaled(self.dim_tag, n, p["method"], dt, p["x"], p["v"])
-        if self.hourglass > 0.0:
-            add_scaled(self.dim_tag, n, p["method"], dt, p["u"], p["v"])
+        if self.hourglass is not None:
+            self.hourglass.drift(p, self.dim_tag, n, dt)
 
     def kick(self, dt):
         """The first half kick of a Verlet step alone (v += dt/2 acc, with the first rates

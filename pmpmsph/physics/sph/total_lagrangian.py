@@ -20,7 +20,6 @@ import numpy as np
 
 from ...errors import RunError
 from ...kernels.neighbours import neighbour_lists
-from ...kernels.sph.hourglass_quadratic import HOURGLASS_FITS
 from ...kernels.sph.stress import sound_speeds, sph_stress_all
 from ...kernels.sph.integrate import add_scaled, first_outside
 from ...kernels.sph.kernel_functions import SUPPORT
@@ -29,7 +28,7 @@ from ...kernels.sph.tlsph import (deformation_gradient, first_piola, internal_fo
                                    kernel_correction, velocity_gradient, volumes_from_F)
 from ...parallel.particle_halo import ParticleHalo
 from ...particles import FieldSpec
-from ..scratch import rows_at_least
+from .hourglass_control import HourglassControl
 from .stage import HALO_MARGIN, SPHStage
 
 
@@ -54,8 +53,7 @@ class TLSPHStage(SPHStage):
         if state:
             out.append(FieldSpec("mstate0", (state,), halo=True))
         if case.sph.hourglass > 0.0:  # the fitted gradient of the hourglass control
-            out.append(FieldSpec("Fh", HOURGLASS_FITS[case.sph.hourglass_fit].coefficients,
-                                 migrate=False, halo=True))
+            out += HourglassControl.fields(case, displacement=False)
         return out
 
     def __init__(self, case, particles, materials, decomposition, dist, timers=None):
@@ -68,7 +66,8 @@ class TLSPHStage(SPHStage):
         self.ref = None  # (start0, index0, gw0) of the reference configuration
         # hourglass control (kernels/sph/hourglass.py) over half lists of the reference
         # configuration; u = x - X0 is formed at each evaluation (no integrated field)
-        self.hourglass = spec.hourglass
+        self.hourglass = (HourglassControl(case, self.fluid) if spec.hourglass > 0.0
+                          else None)
         # the materials of the SPH solids: their rows (and MPM points of the same material,
         # seed 000's region coupling) form the reference configuration; the rows of other
         # materials, e.g. an MPM fluid's points, are neither neighbours nor written here
@@ -143,7 +142,7 @@ class TLSPHStage(SPHStage):
             kernel_correction(X0, p.with_halo("vol0"), start, index, self.h, self.kern,
                               self.dim, self.corrected, wt0, gw0)
         self.ref = (start, index, gw0)
-        if self.hourglass > 0.0:
+        if self.hourglass is not None:
             self.ref_half = neighbour_lists(X0, p.n_owned, SUPPORT * self.h, half=True)
         self.n_total_build = nt
         self.rebuilds += 1
@@ -220,7 +219,7 @@ class TLSPHStage(SPHStage):
                 internal_force(start0, index0, gw0, vol0, P, self.dim, f)
             acc = p["acc"]
             acc[:] = f[:n] / p["mass"][:, None] + self.gravity[: self.dim]
-        if self.hourglass > 0.0:
+        if self.hourglass is not None:
             self._hourglass(acc)
         if self._mirror is not None:  # the ghosts' forces to their partners
             self._mirror.hand_back(acc, self.gravity[: self.dim])
@@ -243,23 +242,16 @@ class TLSPHStage(SPHStage):
         n, nt = p.n_owned, p.n_total
         smoothing = smoothing_of(self.dim_tag, self.kern_tag, self.h)
         pairs = pair_lists(n, *self.ref_half)
-        X0, rho = p.with_halo("X0"), p.with_halo("rho")
-        method, mat, mass = p.with_halo("method"), p.with_halo("mat"), p.with_halo("mass")
-        u = p.with_halo("x") - X0
+        u = p.with_halo("x") - p.with_halo("X0")
         cs = np.empty(nt)
-        self._A = rows_at_least(self._A, n)
         with t.phase("sph"):
-            sound_speeds(self.dim, nt, method, mat, rho, p.with_halo("F"),
-                         self.tagged_materials, cs)
-            control = self._control_pairs(n, *self.ref_half)
-            self._fit(smoothing, pairs, control, u, X0, mass, rho, method, mat, self.fluid,
-                      self._A, p.with_halo("Fh"))
-        if self.halo_enabled and self.dist.size > 1:
-            with t.phase("halo"):
-                self.halo.refresh(("Fh",))
+            sound_speeds(self.dim, nt, p.with_halo("method"), p.with_halo("mat"),
+                         p.with_halo("rho"), p.with_halo("F"), self.tagged_materials, cs)
+            control = self.hourglass.control_pairs(p, n, *self.ref_half)
+        self.hourglass.fit(p, smoothing, pairs, control, u,
+                           self.halo if self.halo_enabled and self.dist.size > 1 else None, t)
         with t.phase("sph"):
-            self._fit_forces(smoothing, pairs, control, u, X0, p.with_halo("Fh"), mass, rho, cs,
-                             self.hourglass, acc)
+            self.hourglass.forces(p, smoothing, pairs, control, u, cs, acc)
 
     def initialise(self):
         self._bad = -1
