@@ -123,15 +123,19 @@ class ParticleSet:
         """Owned rows followed by the halo copies (a view)."""
         return self.arrays[name][: self.n_total]
 
-    def move(self, rows: np.ndarray, axis: int, to: np.ndarray) -> None:
-        """Set component `axis` of the owned positions x[rows] to `to`, for a mover other than
-        the stages' own drifts (a prescribed velocity). Fields that follow positions move
-        with them: the SPH hourglass control's displacement u, integrated beside x rather
-        than taken as x - X0 (kernels/sph/hourglass.py), by the same amount."""
+    def move(self, rows: np.ndarray, axes, to: np.ndarray) -> None:
+        """Set the components `axes` (one axis or a sequence) of the owned positions x[rows]
+        to `to` (rows x axes, or a vector for one axis), for a mover other than the stages'
+        own drifts (a prescribed velocity). Fields that follow positions move with them:
+        the SPH hourglass control's displacement u, integrated beside x rather than taken
+        as x - X0 (kernels/sph/hourglass.py), by the same amount."""
         x = self["x"]
+        axes = np.atleast_1d(axes)
+        block = (np.asarray(rows)[:, None], axes)
+        to = np.reshape(to, (len(rows), len(axes)))
         if "u" in self.arrays:
-            self["u"][rows, axis] += to - x[rows, axis]
-        x[rows, axis] = to
+            self["u"][block] += to - x[block]
+        x[block] = to
 
     # -- size changes -----------------------------------------------------------------------
     def reserve(self, capacity: int) -> None:

@@ -86,6 +86,13 @@ class PrescribedVelocity:
         # which read at their own times; None until a probe opens it (`open_tap`)
         self.tap = None
         self.tap_elapsed = 0.0
+        # per constraint: its held components, their axes and values
+        self._components = [(s, np.array([a for a, val in enumerate(s.velocity)
+                                          if val is not None], np.int64),
+                             np.array([val for val in s.velocity if val is not None], float))
+                            for s in specs]
+        self._key = None  # (`_selection`)
+        self._sel = []
 
     def columns(self, dim):
         """The diagnostics columns of the reactions: reaction{j}_x, ... per constraint j."""
@@ -99,6 +106,33 @@ class PrescribedVelocity:
                 ids[_in_region(x, s.region)] = j
         return ids
 
+    def _selection(self):
+        """Per constraint: (its owned rows, their masses, the order that sorts their gids,
+        the sorted gids), kept while `particles.epoch` says no row changed (a step of a
+        scene that neither sorts nor migrates finds them once: on a small scene these
+        searches were a tenth of the step)."""
+        p = self.particles
+        key = (p.epoch, p.n_owned)
+        if self._key != key:
+            n = p.n_owned
+            ids = p["vpres_id"][:n]
+            gid = p["gid"][:n]
+            self._sel = []
+            for j in range(len(self.specs)):
+                rows = np.nonzero(ids == j)[0]
+                order = np.argsort(gid[rows], kind="stable")
+                self._sel.append((rows, p["mass"][rows], order, gid[rows][order]))
+            self._key = key
+        return self._sel
+
+    def _active(self, time):
+        """(constraint index, its rows, masses, order, sorted gids, the axes and values of
+        its held components) of the constraints acting at `time` that hold any."""
+        return [(j, *sel, axes, vals)
+                for j, ((s, axes, vals), sel) in enumerate(zip(self._components,
+                                                               self._selection()))
+                if s.start <= time < s.until and len(axes)]
+
     def apply(self, time, dt=None, x_before=None):
         """Set the prescribed components of v; after a step (`dt`, the particles' gids and
         positions `x_before` at its start, from `positions`) also move those particles with
@@ -107,30 +141,29 @@ class PrescribedVelocity:
         matched by gid: matched by row, clamped particles of a plate under MPM water traded
         places and failed at step 2 (docs/plate.md)."""
         p = self.particles
-        n = p.n_owned
-        ids = p["vpres_id"][:n]
         v = p["v"]
         if x_before is None:
             self.time = time
-        for j, s in enumerate(self.specs):
-            if not (s.start <= time < s.until):
-                continue
-            sel = np.nonzero(ids == j)[0]
+        for j, sel, mass, order, _, axes, vals in self._active(time):
+            block = (sel[:, None], axes)
             if x_before is not None:  # (a row that arrived from another rank in the step
-                gids, xs = x_before[j]  # keeps the position its stage gave it)
-                at = np.minimum(np.searchsorted(gids, p["gid"][sel]), max(len(gids) - 1, 0))
-                known = gids[at] == p["gid"][sel] if len(gids) else np.zeros(len(sel), bool)
-            mass = p["mass"][sel]
-            for a, val in enumerate(s.velocity):
-                if val is not None:
-                    if x_before is not None:
-                        dp = np.dot(mass, val - v[sel, a]) + dt * self._held[j, a]
-                        self.impulse[j, a] += dp
-                        if self.tap is not None:
-                            self.tap[j, a] += dp
-                    v[sel, a] = val
-                    if x_before is not None:
-                        p.move(sel[known], a, xs[at[known], a] + dt * val)
+                gids, xs, epoch = x_before[j]  # keeps the position its stage gave it)
+                if epoch == self._key:  # the same rows as at the start: no search
+                    moved, start = sel[order], xs
+                else:
+                    at = np.minimum(np.searchsorted(gids, p["gid"][sel]),
+                                    max(len(gids) - 1, 0))
+                    known = (gids[at] == p["gid"][sel] if len(gids)
+                             else np.zeros(len(sel), bool))
+                    moved, start = sel[known], xs[at[known]]
+            if x_before is not None:
+                dp = mass @ (vals - v[block]) + dt * self._held[j, axes]
+                self.impulse[j, axes] += dp
+                if self.tap is not None:
+                    self.tap[j, axes] += dp
+            v[block] = vals
+            if x_before is not None:
+                p.move(moved, axes, start[:, axes] + dt * vals)
         if x_before is not None:
             self.elapsed += dt
             self.tap_elapsed += dt
@@ -143,16 +176,10 @@ class PrescribedVelocity:
         force within every step and was put back after it, and an updated-Lagrangian solid
         integrated the undone motion into F: a clamped SPH plate under its own weight crept
         without end (docs/plate.md)."""
-        n = self.particles.n_owned
-        ids = self.particles["vpres_id"][:n]
-        mass = self.particles["mass"][:n]
-        for j, s in enumerate(self.specs):
-            if s.start <= self.time < s.until:
-                sel = ids == j
-                for a, val in enumerate(s.velocity):
-                    if val is not None:
-                        self._held[j, a] = -np.dot(mass[sel], acc[:n, a][sel])
-                        acc[:n, a][sel] = 0.0
+        for j, sel, mass, _, _, axes, _ in self._active(self.time):
+            block = (sel[:, None], axes)
+            self._held[j, axes] = -(mass @ acc[block])
+            acc[block] = 0.0
 
     def local_impulse(self):
         """This rank's impulses since the last `reaction_row` (constraints x 3), then reset;
@@ -184,14 +211,8 @@ class PrescribedVelocity:
         return dict(zip(self.columns(dim), mean[:, :dim].ravel()))
 
     def positions(self):
-        """(gids, positions) of each constraint's particles at the start of a step, sorted by
-        gid (for `apply`); only those rows are copied."""
-        p = self.particles
-        n = p.n_owned
-        ids = p["vpres_id"][:n]
-        out = []
-        for j in range(len(self.specs)):
-            rows = np.nonzero(ids == j)[0]
-            order = np.argsort(p["gid"][rows], kind="stable")
-            out.append((p["gid"][rows][order], p["x"][rows][order]))
-        return out
+        """(gids, positions, the rows' epoch) of each constraint's particles at the start of
+        a step, sorted by gid (for `apply`); only those rows are copied."""
+        x = self.particles["x"]
+        return [(gids, x[rows[order]], self._key)
+                for rows, _, order, gids in self._selection()]

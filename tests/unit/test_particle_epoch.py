@@ -38,3 +38,15 @@ def test_epoch_stays_while_rows_keep_their_particles():
     p["x"][:] += 1.0              # values change, rows keep their particles
     p.move(np.array([1]), 0, np.array([3.0]))
     assert p.epoch == e
+
+
+def test_move_sets_several_axes_and_takes_no_rows():
+    """`move` as the prescribed velocities use it: all held axes of the rows at once, and a
+    rank that owns none of a constraint's rows (no error there: the others would wait)."""
+    p = _set(4)
+    x = p["x"].copy()
+    p.move(np.array([0, 2]), np.array([0, 1]), np.array([[5.0, 6.0], [7.0, 8.0]]))
+    x[[0, 2]] = [[5.0, 6.0], [7.0, 8.0]]
+    assert np.array_equal(p["x"], x)
+    p.move(np.zeros(0, np.int64), np.array([0, 1]), np.zeros((0, 2)))
+    assert np.array_equal(p["x"], x)

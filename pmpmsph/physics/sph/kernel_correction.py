@@ -36,6 +36,7 @@ class KernelCorrection:
         self.liu = spec.correction_kind == "liu"
         self._M = np.zeros((0, 3, 3))   # Bonet & Lok's moment matrices (scratch)
         self._sums = np.zeros((0, 52))  # Liu's moment sums (scratch)
+        self._rows, self._rows_key = None, None  # (`_liu_rows`)
 
     @staticmethod
     def fields(case):
@@ -53,8 +54,12 @@ class KernelCorrection:
     def _liu_rows(self, p, n):
         """The owned rows that take Liu's correction: SPH solids. Fluid pairs keep the plain
         gradient (with it, water under a plate broke up at the free surface's corners:
-        det F < 0 after 35,000 steps at spacing 0.005, docs/plate.md)."""
-        return (p["method"][:n] == SPH) & ~self.fluid[p["mat"][:n]]
+        det F < 0 after 35,000 steps at spacing 0.005, docs/plate.md). Kept while
+        `particles.epoch` says no row changed."""
+        if self._rows_key != (p.epoch, n):
+            self._rows = (p["method"][:n] == SPH) & ~self.fluid[p["mat"][:n]]
+            self._rows_key = (p.epoch, n)
+        return self._rows
 
     def compute(self, p, smoothing, pairs, start, index, halo, timers):
         """B or Liu's coefficients of the owned rows; `halo` None: no refresh."""

@@ -44,6 +44,7 @@ from ...errors import ConfigError
 
 #: a partner is the free particle within this fraction of the spacing of a ghost's image
 MATCH = 0.25
+_IDENTITY = np.eye(3)
 
 
 class MirrorClamps:
@@ -62,7 +63,7 @@ class MirrorClamps:
         # of the evaluation under way (`place` to `restore`: no row moves in between): the
         # owned rows of the ghosts and partners, the saved ghost state, the held-row mask;
         # the rows and the mask are kept while `particles.epoch` says no row changed
-        self._grow = self._prow = self._saved = self._held = None
+        self._index = self._saved = self._held = None
         self._rows_epoch = self._held_epoch = None
 
     # -- set-up ---------------------------------------------------------------------------
@@ -133,36 +134,54 @@ class MirrorClamps:
             out.append(rows)
         return out
 
+    def _evaluation_rows(self):
+        """(ghosts whose partner is owned here, those partners' rows, ghosts owned here,
+        their rows), as indices; kept while `particles.epoch` says no row changed."""
+        p = self.p
+        if self._rows_epoch != p.epoch:
+            grow, prow = self._rows(self.ghost_gid, self.partner_gid)
+            mine = np.nonzero(prow >= 0)[0]
+            own = np.nonzero(grow >= 0)[0]
+            self._index = (mine, prow[mine], own, grow[own])
+            self._rows_epoch = p.epoch
+        return self._index
+
+    def _gathered(self, index, values):
+        """Per ghost (in ghost-gid order), the rows of `values` given by each rank for the
+        ghosts `index` (collective; one rank: no message)."""
+        if self.dist.size == 1 and len(index) == len(self.ghost_gid):
+            return values  # (index is every ghost, in order)
+        out = np.zeros((len(self.ghost_gid),) + values.shape[1:])
+        if self.dist.size == 1:
+            out[index] = values
+        else:
+            for k, vk in self.dist.allgather((index, values)):
+                out[k] = vk
+        return out
+
     def place(self):
         """Put the owned ghosts at the odd image of their partners (before the halo
         exchange); `restore` puts them back at rest."""
         p = self.p
-        if self._rows_epoch != p.epoch:
-            self._grow, self._prow = self._rows(self.ghost_gid, self.partner_gid)
-            self._rows_epoch = p.epoch
-        grow, prow = self._grow, self._prow
-        mine = prow >= 0
+        mine, partners, own, rows = self._evaluation_rows()
         X0, x, v = p["X0"], p["x"], p["v"]
-        sent = (np.nonzero(mine)[0], x[prow[mine]] - X0[prow[mine]], v[prow[mine]])
-        u = np.zeros((len(self.ghost_gid), X0.shape[1]))
-        w = np.zeros_like(u)
-        for k, du, dv in self.dist.allgather(sent):
-            u[k], w[k] = du, dv
-        own = grow >= 0
-        rows = grow[own]
-        self._saved = (rows, x[rows].copy(), v[rows].copy())
-        x[rows] = X0[rows] - u[own]
-        v[rows] = -w[own]
+        d = X0.shape[1]
+        state = self._gathered(mine, np.concatenate([x[partners] - X0[partners],
+                                                     v[partners]], axis=1))
+        self._saved = (x[rows].copy(), v[rows].copy())
+        x[rows] = X0[rows] - state[own, :d]
+        v[rows] = -state[own, d:]
 
     def restore(self):
         """The ghosts back at rest; every held row of a clamp with F = 1 and no stress, as
         the energy counts them (for output and the diagnostics)."""
         p = self.p
-        rows, x, v = self._saved
+        rows = self._index[3]
+        x, v = self._saved
         p["x"][rows] = x
         p["v"][rows] = v
         held = self.held_owned_rows()
-        p["F"][held] = np.eye(3)
+        p["F"][held] = _IDENTITY
         p["sigma"][held] = 0.0
         p["vol"][held] = p["vol0"][held]
         p["rho"][held] = p["mass"][held] / p["vol0"][held]
@@ -186,12 +205,9 @@ class MirrorClamps:
         """Each ghost's force (m (acc - g + damping v): without its weight and its own
         damping, before the clamp zeroes it) to its partner, with the mirror's Jacobian -1
         (collective)."""
-        p, grow, prow = self.p, self._grow, self._prow
-        own = np.nonzero(grow >= 0)[0]
-        f = p["mass"][grow[own], None] * (acc[grow[own]] - gravity
-                                          + damping * p["v"][grow[own]])
-        force = np.zeros((len(self.ghost_gid), acc.shape[1]))
-        for k, fk in self.dist.allgather((own, f)):
-            force[k] = fk
-        mine = np.nonzero(prow >= 0)[0]  # in ghost-gid order: the same sums on any ranks
-        np.subtract.at(acc, prow[mine], force[mine] / p["mass"][prow[mine], None])
+        p = self.p
+        mine, partners, own, rows = self._index
+        f = p["mass"][rows, None] * (acc[rows] - gravity + damping * p["v"][rows])
+        force = self._gathered(own, f)
+        # in ghost-gid order: the same sums on any ranks
+        np.subtract.at(acc, partners, force[mine] / p["mass"][partners, None])
