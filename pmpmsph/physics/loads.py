@@ -156,7 +156,6 @@ class PrescribedVelocity:
                     known = (gids[at] == p["gid"][sel] if len(gids)
                              else np.zeros(len(sel), bool))
                     moved, start = sel[known], xs[at[known]]
-            if x_before is not None:
                 dp = mass @ (vals - v[block]) + dt * self._held[j, axes]
                 self.impulse[j, axes] += dp
                 if self.tap is not None:

@@ -28,12 +28,8 @@ class KernelCorrection:
     TAG = (0,)
 
     def __init__(self, case, fluid):
-        spec = case.sph
-        self.dim_tag = (0,) * case.dim
-        self.kern_tag = (0,) * (spec.kernel_code + 1)
-        self.h = spec.h
         self.fluid = fluid
-        self.liu = spec.correction_kind == "liu"
+        self.liu = case.sph.correction_kind == "liu"
         self._M = np.zeros((0, 3, 3))   # Bonet & Lok's moment matrices (scratch)
         self._sums = np.zeros((0, 52))  # Liu's moment sums (scratch)
         self._rows, self._rows_key = None, None  # (`_liu_rows`)
@@ -74,8 +70,9 @@ class KernelCorrection:
             field = "liu"
         else:
             self._M = rows_at_least(self._M, n)
+            dim_tag, kern_tag, h = smoothing
             with timers.phase("sph"):
-                correction_matrices(self.dim_tag, self.kern_tag, self.h, n, p.with_halo("x"),
+                correction_matrices(dim_tag, kern_tag, h, n, p.with_halo("x"),
                                     p.with_halo("mass"), p.with_halo("rho"),
                                     p.with_halo("method"), start, index, self._M,
                                     p.with_halo("B"))
